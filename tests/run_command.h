@@ -1,0 +1,34 @@
+// SPDX-License-Identifier: MIT
+// Runs the built `pastemix` command in a test and captures its exit code and output (stdout + stderr).
+#pragma once
+
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <string>
+
+namespace pastemix::test {
+
+struct CommandResult {
+  int exit_code = -1;
+  std::string output;
+};
+
+// `args` is appended to the binary path as shell words (quote them yourself if needed).
+inline CommandResult run_pastemix(const std::string& args) {
+  std::string cmd = std::string("'") + PASTEMIX_BINARY + "' " + args + " 2>&1";
+  CommandResult r;
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) return r;
+  std::array<char, 4096> buf{};
+  std::size_t n;
+  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) r.output.append(buf.data(), n);
+  int status = pclose(pipe);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+inline std::string source_path(const std::string& rel) { return std::string(PASTEMIX_SOURCE_DIR) + "/" + rel; }
+
+}  // namespace pastemix::test
