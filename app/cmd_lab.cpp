@@ -7,6 +7,7 @@ namespace pastemix::app {
 void register_lab_commands(CLI::App& app) {
   auto* lab = app.add_subcommand("lab", "Reduce laboratory measurements to model parameters");
   lab->require_subcommand(1);
+  register_lab_drag_commands(*lab);
 }
 
 }  // namespace pastemix::app

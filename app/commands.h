@@ -6,7 +6,11 @@
 
 namespace pastemix::app {
 
-// `pastemix lab ...` (app/cmd_lab.cpp)
+// `pastemix lab ...` (app/cmd_lab.cpp); it calls the drag registration below for its own subcommand.
 void register_lab_commands(CLI::App& app);
+// `pastemix lab drag-fit ...` (app/cmd_lab_drag.cpp), registered on the `lab` subcommand.
+void register_lab_drag_commands(CLI::App& lab);
+// `pastemix run ...` and other engine commands (app/cmd_model.cpp).
+void register_model_commands(CLI::App& app);
 
 }  // namespace pastemix::app

@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   CLI::App app{"pastemix: lab reduction, f-DEM of waste rock dumped into paste backfill, mixing analysis"};
   app.require_subcommand(1);
   pastemix::app::register_lab_commands(app);
+  pastemix::app::register_model_commands(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
