@@ -63,23 +63,26 @@ void add_simple(CLI::App& lab, const char* name, const char* help, const std::ve
   });
 }
 
+// Three layer panels side by side, j = 3 on top (as in the PNG maps), i = 1..4 left to right.
 void print_grid(const lab::BlockGrid& g, bool s_field) {
-  for (int k = 1; k <= lab::kLayers; ++k) {
-    fmt::print("  layer {}{}: ", k, k == 1 ? " (top)" : "");
-    for (int j = 1; j <= lab::kBlocksJ; ++j) {
-      fmt::print("{}", j == 1 ? "" : " | ");
+  fmt::print("  {:<4}", s_field ? "S" : "C");
+  for (int k = 1; k <= lab::kLayers; ++k)
+    fmt::print("   {:<24}", k == 1 ? "layer 1 (top)" : fmt::format("layer {}", k));
+  fmt::print("\n");
+  for (int j = lab::kBlocksJ; j >= 1; --j) {
+    fmt::print("  j={} ", j);
+    for (int k = 1; k <= lab::kLayers; ++k) {
+      fmt::print("   ");
       for (int i = 1; i <= lab::kBlocksI; ++i) {
         const int b = lab::block_index(i, j, k);
-        if (!s_field) {
-          fmt::print("{:6.1f}", 100 * g.C[b]);
-          continue;
-        }
-        switch (static_cast<lab::SFlag>(g.flag[b])) {
-          case lab::SFlag::capped: fmt::print("{:>6}", "100*"); break;
-          case lab::SFlag::no_rock: fmt::print("{:>6}", "rock0"); break;
-          case lab::SFlag::no_K: fmt::print("{:>6}", "-"); break;
-          case lab::SFlag::value: fmt::print("{:6.1f}", 100 * g.S[b]); break;
-        }
+        std::string cell = fmt::format("{:.1f}", 100 * g.C[b]);
+        if (s_field) switch (static_cast<lab::SFlag>(g.flag[b])) {
+            case lab::SFlag::capped: cell = "100*"; break;
+            case lab::SFlag::no_rock: cell = "rock0"; break;
+            case lab::SFlag::no_K: cell = "-"; break;
+            case lab::SFlag::value: cell = fmt::format("{:.1f}", 100 * g.S[b]); break;
+          }
+        fmt::print("{:>6}", cell);
       }
     }
     fmt::print("\n");
@@ -87,14 +90,12 @@ void print_grid(const lab::BlockGrid& g, bool s_field) {
 }
 
 void print_block_cut(const lab::BlockCutResult& r) {
-  fmt::print("grids per layer: rows of i = 1..4 for j = 1 | 2 | 3 (values in %; 100* = capped, rock0 = no rock, "
-             "- = K unknown)\n");
+  fmt::print("grids in %, seen from above: columns i = 1..4 (20 cm side), rows j = 3..1 (16.5 cm side); "
+             "100* = capped, rock0 = no rock (S undefined), - = K unknown\n");
   for (const auto& g : r.cases) {
     fmt::print("case {}: K = {}\n", g.case_id,
                std::isfinite(g.K) ? fmt::format("{} kg/m3 ({})", g.K, g.K_source) : "unknown (S not computed)");
-    fmt::print(" C\n");
     print_grid(g, false);
-    fmt::print(" S\n");
     print_grid(g, true);
   }
   for (const auto& g : r.corrected) {

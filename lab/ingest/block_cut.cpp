@@ -90,7 +90,8 @@ void compare_case(const CsvTable& t, const PendingCase& pc, const std::vector<st
                                              "kg/m3 ({:.2f} % relative)",
                                              g.case_id, id, 100 * p, 100 * g.S_raw[b], g.K, 100 * rel)});
       if (p > 1.0) over.push_back(fmt::format("{} {:.1f} %", id, 100 * p));
-      if (flag == SFlag::value && p > 1.0) ++cmp.n_flag_disagreements;
+      // Printed without a cap flag: a disagreement whenever eq. 3.8 exceeds 1 (printed above 100 %, we cap).
+      if ((p > 1.0) || (flag == SFlag::capped)) ++cmp.n_flag_disagreements;
     }
   }
   if (!over.empty())
