@@ -50,7 +50,7 @@ IngestResult ingest_rebound(const CsvTable& t, const ColumnUnits& units) {
   p.value = s.mean;
   p.sd = s.sd;
   p.n = s.n;
-  p.unit = "-";
+  p.unit = std::string("-");  // (a temporary: GCC 12 warns falsely, -Wrestrict, on a 1-char literal)
   p.method = "rebound (drop) test, steel ball on steel plate, e = sqrt(H_r/H_f); mean over drop heights";
   p.source = t.path();
   p.trials = e;

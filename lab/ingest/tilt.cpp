@@ -42,7 +42,7 @@ IngestResult ingest_tilt(const CsvTable& t, const ColumnUnits& units) {
   p.value = s.mean;
   p.sd = s.sd;
   p.n = s.n;
-  p.unit = "-";
+  p.unit = std::string("-");  // (a temporary: GCC 12 warns falsely, -Wrestrict, on a 1-char literal)
   p.method = "tilt test, steel ball on steel plate, mu_s = H_l/L";
   p.source = t.path();
   p.trials = mu;
