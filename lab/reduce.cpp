@@ -85,6 +85,11 @@ void run_block_cut(const Params& t, const Manifest& m, ReduceResult& r) {
 void run_sieves(const Params& sieve, const Manifest& m, ReduceResult& r) {
   NamedSieve s;
   s.name = sieve.string("name");
+  // The name becomes a TOML key (psd.<name>) and an HDF5 group (/sieve/<name>).
+  const bool ok = !s.name.empty() && s.name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_") == std::string::npos;
+  if (!ok) sieve.fail("name", fmt::format("'{}': use lower-case letters, digits and '_'", s.name));
+  for (const auto& other : r.sieves)
+    if (other.name == s.name) sieve.fail("name", fmt::format("sieve name '{}' used twice", s.name));
   s.note = sieve.string_or("note", "");
   s.provenance = sieve.choice_or("provenance", {"measured", "assumed", "literature"}, "measured") == "assumed"
                      ? Provenance::assumed
@@ -128,8 +133,9 @@ ReduceResult reduce(const std::filesystem::path& dir) {
     r.steps_run.push_back(step.key);
   }
   // Sieve files are many of one kind, hence an array of tables rather than a step of their own.
-  for (const Params& s : root.tables("sieve")) run_sieves(s, m, r);
-  if (!root.tables("sieve").empty()) r.steps_run.push_back("sieve");
+  const std::vector<Params> sieves = root.tables("sieve");  // (call once: each call makes tables finish() checks)
+  for (const Params& s : sieves) run_sieves(s, m, r);
+  if (!sieves.empty()) r.steps_run.push_back("sieve");
   root.finish();
   std::set<std::string> keys;
   for (const auto& p : r.parameters)

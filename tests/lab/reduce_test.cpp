@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 
 #include <doctest/doctest.h>
 #include <fmt/format.h>
@@ -86,4 +87,25 @@ TEST_CASE("reduce CLI: without Python the PNGs are skipped with a warning, the r
   CHECK(fs::exists(out / "lab.h5"));
   CHECK(!fs::exists(out / "mixing_case_1.png"));
   fs::remove_all(out);
+}
+
+TEST_CASE("reduce: [[sieve]] entries give psd.<name> in parameters.toml and /sieve/<name> in lab.h5") {
+  const fs::path dir = fresh_dir("sieve_ds"), out = dir / "out";
+  fs::create_directories(dir);
+  fs::copy_file(test::source_path("tests/lab/data/sieve_example.csv"), dir / "sieve_example.csv");
+  std::ofstream(dir / "manifest.toml") << "[[sieve]]\nname = \"example\"\nfile = \"sieve_example.csv\"\n"
+                                          "provenance = \"assumed\"\nnote = \"invented for the test\"\ncut_mm = 1.18\n"
+                                          "[sieve.units]\nsieve_mm = \"mm\"\nmass_retained_g = \"g\"\n";
+  auto res = test::run_pastemix("lab reduce '" + dir.string() + "' --out '" + out.string() + "'");
+  INFO(res.output);
+  REQUIRE(res.exit_code == 0);
+  const Params toml = Params::parse_file(out / "parameters.toml");
+  const Params psd = toml.table("psd").table("example");
+  CHECK(psd.numbers("mass_fraction").size() == 4);  // cut at 1.18 mm
+  CHECK(psd.string("provenance") == "assumed");
+  H5Reader h5(out / "lab.h5");
+  CHECK(h5.read_doubles("/sieve/example/d_min")[0] == doctest::Approx(1.18e-3));
+  CHECK(h5.read_doubles("/sieve/example/passing").size() == 6);
+  CHECK(!fs::exists(out / "mixing_case_1.png"));  // no block cut, no maps
+  fs::remove_all(dir);
 }
