@@ -29,7 +29,7 @@ TEST_CASE("lambert_w_minus1: residual w e^w - x at machine precision over the wh
   }
 }
 
-TEST_CASE("lambert_w_minus1: outside [-1/e, 0) is a domain error") {
+TEST_CASE("lambert_w_minus1: x outside -1/e .. 0 is a domain error") {
   CHECK_THROWS_AS(lambert_w_minus1(0.0), std::domain_error);
   CHECK_THROWS_AS(lambert_w_minus1(0.5), std::domain_error);
   CHECK_THROWS_AS(lambert_w_minus1(-0.37), std::domain_error);

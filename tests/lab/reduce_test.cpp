@@ -89,7 +89,7 @@ TEST_CASE("reduce CLI: without Python the PNGs are skipped with a warning, the r
   fs::remove_all(out);
 }
 
-TEST_CASE("reduce: [[sieve]] entries give psd.<name> in parameters.toml and /sieve/<name> in lab.h5") {
+TEST_CASE("reduce: sieve entries give psd.NAME in parameters.toml and /sieve/NAME in lab.h5") {
   const fs::path dir = fresh_dir("sieve_ds"), out = dir / "out";
   fs::create_directories(dir);
   fs::copy_file(test::source_path("tests/lab/data/sieve_example.csv"), dir / "sieve_example.csv");

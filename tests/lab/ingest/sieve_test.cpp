@@ -23,7 +23,7 @@ SieveResult parse(const std::string& rows) {
 }
 }  // namespace
 
-TEST_CASE("sieve: masses retained -> intervals, mass fractions, cumulative passing; pan excluded") {
+TEST_CASE("sieve: masses retained -> intervals, mass fractions, cumulative passing, pan excluded") {
   const SieveResult r = example();
   REQUIRE(r.psd.intervals.size() == 5);
   CHECK(r.total_mass == doctest::Approx(0.3005));
