@@ -177,7 +177,7 @@ void add_sieve(CLI::App& lab) {
     if (o->cut_mm < 0.0) throw InputError("--cut", 0, "", "must be >= 0 mm");
     const auto r = lab::ingest_sieve(t, lab::ColumnUnits::defaults(lab::sieve_columns()), o->cut_mm * 1e-3);
     fmt::print("{}: total {:.2f} g, pan {:.2f} %{}\n", o->file, r.total_mass * 1e3, 100 * r.pan_fraction,
-               r.cut > 0 ? fmt::format(", cut at {} mm", r.cut * 1e3) : "");
+               r.cut > 0 ? fmt::format(", cut at {:g} mm", r.cut * 1e3) : "");
     fmt::print("{:>10} {:>12}\n", "sieve_mm", "passing_%");
     for (std::size_t k = 0; k < r.sieves.size(); ++k)
       fmt::print("{:>10g} {:>12.2f}\n", r.sieves[k] * 1e3, 100 * r.passing[k]);

@@ -2,6 +2,7 @@
 #include "lab/ingest/ingest.h"
 
 #include <cmath>
+#include <cstdlib>
 
 #include <fmt/format.h>
 
@@ -60,12 +61,16 @@ void require_spec_columns(const CsvTable& table, const std::vector<ColumnSpec>& 
 }
 
 double rounding_tolerance(std::string_view cell) {
-  auto dot = cell.find('.');
-  auto exp = cell.find_first_of("eE");
-  if (exp != std::string_view::npos) return 0.0;  // e-notation: treat as exact, compare relatively elsewhere
-  const std::size_t decimals = dot == std::string_view::npos ? 0 : cell.size() - dot - 1;
+  // "1.08e-7": the last printed digit of the mantissa, scaled by the exponent.
+  int exponent = 0;
+  if (auto e = cell.find_first_of("eE"); e != std::string_view::npos) {
+    exponent = std::atoi(std::string(cell.substr(e + 1)).c_str());
+    cell = cell.substr(0, e);
+  }
+  const auto dot = cell.find('.');
+  const int decimals = dot == std::string_view::npos ? 0 : static_cast<int>(cell.size() - dot - 1);
   // A hair above half a unit so that values that round either way at exactly .5 do not warn.
-  return 0.5 * std::pow(10.0, -static_cast<double>(decimals)) * (1.0 + 1e-6);
+  return 0.5 * std::pow(10.0, static_cast<double>(exponent - decimals)) * (1.0 + 1e-6);
 }
 
 std::string where(const CsvTable& table, const CsvTable::Row& row) {
