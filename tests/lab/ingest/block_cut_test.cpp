@@ -120,7 +120,8 @@ TEST_CASE("block cut: case 1 has no K, so no S unless K is given") {
   CHECK(warned);
   auto K = kThesisK;
   K[1] = {3570, "test"};
-  const BlockGrid& g = thesis(K).cases.at(0);
+  const BlockCutResult with_k = thesis(K);
+  const BlockGrid& g = with_k.cases.at(0);
   const int b = block_index(2, 2, 1);  // M_221: 0.0673 kg rock, 0.0639 kg paste
   CHECK(g.S_raw[b] == doctest::Approx(0.0639 * 3570 / (2710 * (1 - 0.6 / 1.6) * 0.0673)));
 }
