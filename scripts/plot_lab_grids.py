@@ -87,7 +87,8 @@ class GridFigure:
     def save(self, path, title, note):
         self.title.set_text(title)
         self.note.set_text("\n".join(textwrap.wrap(note, 150)))
-        self.fig.savefig(path, dpi=100, format="png")
+        # Light compression: encoding at the default level costs ~15 % of the run for ~30 % smaller files.
+        self.fig.savefig(path, dpi=100, format="png", pil_kwargs={"compress_level": 2})
 
 
 def case_title(f, n):
