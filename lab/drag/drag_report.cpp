@@ -120,13 +120,13 @@ std::string summary_csv(const DragFitResult& r) {
 
 std::string curves_csv(const DragFitResult& r) {
   std::string out = "Re_prime,published_4_19,stokes";
-  for (const auto& c : r.candidates) out += "," + c.name();
+  for (const auto& c : r.candidates) out += fmt::format(",{}", c.name());
   out += "\n";
   for (int i = 0; i <= 700; ++i) {
     const double re = std::pow(10.0, -3.0 + 7.0 * i / 700.0);
     out += fmt::format("{},{},{}", num(re), num(DragCurve{pastemix::drag::CurveId::published_4_19, {}}.cd(re)),
                        num(24.0 / re));
-    for (const auto& c : r.candidates) out += "," + num(c.in_sample.curve.cd(re));
+    for (const auto& c : r.candidates) out += fmt::format(",{}", num(c.in_sample.curve.cd(re)));
     out += "\n";
   }
   return out;
@@ -181,7 +181,7 @@ std::vector<Parameter> drag_curve_parameters(const DragFitResult& r) {
   chosen.key = "drag_curve.chosen";
   chosen.text = std::string(info.name);
   chosen.n = b.in_sample.n;
-  chosen.unit = "-";
+  chosen.unit = std::string(1, '-');
   chosen.method = "lowest leave-one-suspension-out mean |v_pred/v - 1| among fitted families x targets";
   chosen.provenance = Provenance::fitted;
   chosen.source = kSources;
@@ -195,7 +195,7 @@ std::vector<Parameter> drag_curve_parameters(const DragFitResult& r) {
     p.value = b.in_sample.curve.coefficients[i];
     p.sd = b.in_sample.sd[i];
     p.n = b.in_sample.n;
-    p.unit = "-";
+    p.unit = std::string(1, '-');
     p.method = method_of(b);
     p.provenance = Provenance::fitted;
     p.source = kSources;
