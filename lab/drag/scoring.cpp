@@ -83,18 +83,44 @@ Candidate evaluate_candidate(CurveId family, const FitOptions& options, std::spa
   return c;
 }
 
-std::vector<std::pair<CurveId, FitOptions>> default_candidates() {
+std::vector<std::pair<CurveId, FitOptions>> default_candidates(bool with_robust) {
   std::vector<std::pair<CurveId, FitOptions>> out;
-  for (CurveId f : {CurveId::power_sum, CurveId::power_blend})
-    for (FitTarget t : {FitTarget::log_cd, FitTarget::velocity}) {
-      FitOptions o;
-      o.target = t;
-      out.emplace_back(f, o);
-    }
+  for (FitLoss loss : {FitLoss::none, FitLoss::cauchy}) {
+    if (loss == FitLoss::cauchy && !with_robust) continue;
+    for (CurveId f : {CurveId::power_sum, CurveId::power_blend})
+      for (FitTarget t : {FitTarget::log_cd, FitTarget::velocity}) {
+        FitOptions o;
+        o.target = t;
+        o.loss = loss;
+        out.emplace_back(f, o);
+      }
+  }
   return out;
 }
 
-DragFitResult run_drag_fit(const std::filesystem::path& dir, double g) {
+namespace {
+
+void like_for_like(DragFitResult& r) {
+  std::vector<Prediction> loso, pub, pub_vs_model;
+  for (const auto& row : r.thesis_rows) {
+    if (!row.v_measured || !row.v_model || !row.spheres_row_id) continue;
+    for (std::size_t i = 0; i < r.data.spheres.size(); ++i) {
+      if (r.data.spheres[i].row_id != *row.spheres_row_id) continue;
+      loso.push_back(r.best().loso_predictions[i]);
+      pub.push_back(r.published[i]);
+      Prediction p = r.published[i];
+      p.v_measured = *row.v_model;
+      pub_vs_model.push_back(p);
+    }
+  }
+  r.loso_on_thesis_spheres = score("(c) on the A.1 spheres", loso);
+  r.published_on_thesis_spheres = score("(a) on the A.1 spheres", pub);
+  r.published_vs_thesis_model = score("(a) vs thesis model speeds", pub_vs_model);
+}
+
+}  // namespace
+
+DragFitResult run_drag_fit(const std::filesystem::path& dir, double g, bool with_robust) {
   DragFitResult r;
   r.dataset_dir = dir;
   r.data = read_settling_dataset(dir);
@@ -115,7 +141,7 @@ DragFitResult run_drag_fit(const std::filesystem::path& dir, double g) {
   }
   r.thesis_score = score("(d) thesis model (A.1)", r.thesis_model);
 
-  for (const auto& [family, options] : default_candidates())
+  for (const auto& [family, options] : default_candidates(with_robust))
     r.candidates.push_back(evaluate_candidate(family, options, r.data.spheres, g));
   for (std::size_t i = 1; i < r.candidates.size(); ++i) {
     const auto& a = r.candidates[i].loso_score;
@@ -123,6 +149,7 @@ DragFitResult run_drag_fit(const std::filesystem::path& dir, double g) {
     if (a.mean_abs < b.mean_abs || (a.mean_abs == b.mean_abs && a.median_abs < b.median_abs))
       r.chosen = static_cast<int>(i);
   }
+  like_for_like(r);
   return r;
 }
 

@@ -66,14 +66,20 @@ struct DragFitResult {
   int chosen = 0;
   std::vector<Prediction> thesis_model;  // (d): the 90 A.1 pairs with both values
   Score thesis_score;
+  // Like for like with (d): the chosen curve's LOSO and the published curve on the same (Table 4.3) spheres.
+  Score loso_on_thesis_spheres, published_on_thesis_spheres;
+  // The published curve through our force balance against the thesis f-EDEM output (v_measured := A.1 model
+  // speed): how well the solver reproduces the thesis's own model.
+  Score published_vs_thesis_model;
   const Candidate& best() const { return candidates[chosen]; }
 };
 
 // Reads the three files in `dir`, scores the published curve and the thesis model, fits and scores every
 // candidate (fitted family x target), and picks one. Throws InputError for bad input.
-DragFitResult run_drag_fit(const std::filesystem::path& dir, double g);
+// `with_robust` adds the same candidates fitted with a Cauchy loss (scale 0.1 in ln units).
+DragFitResult run_drag_fit(const std::filesystem::path& dir, double g, bool with_robust = false);
 
-// The candidate set drag-fit evaluates.
-std::vector<std::pair<pastemix::drag::CurveId, FitOptions>> default_candidates();
+// The candidate set drag-fit evaluates: fitted families x targets (x losses if with_robust).
+std::vector<std::pair<pastemix::drag::CurveId, FitOptions>> default_candidates(bool with_robust = false);
 
 }  // namespace pastemix::lab::drag
