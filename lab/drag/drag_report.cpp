@@ -19,6 +19,14 @@ namespace {
 using pastemix::drag::curve_info;
 
 std::string num(double x) { return std::isfinite(x) ? fmt::format("{:.6g}", x) : std::string("nan"); }
+// Shortest text that reads back to the same double: coefficients the engine must reproduce exactly.
+// Always with a '.' or an exponent so TOML reads a float (0 would be an integer).
+std::string exact(double x) {
+  if (!std::isfinite(x)) return "nan";
+  std::string s = fmt::format("{}", x);
+  if (s.find_first_of(".e") == std::string::npos) s += ".0";
+  return s;
+}
 
 std::string toml_string(const std::string& s) {
   std::string out = "\"";
@@ -155,8 +163,8 @@ std::string drag_curve_toml(const DragFitResult& r) {
                      toml_string(kSources), b.in_sample.n, num(units::g));
   for (const auto& p : drag_curve_parameters(r)) {
     if (!p.text.empty()) continue;
-    out += fmt::format("[{}]\nvalue = {}\n", p.key, num(p.value));
-    if (std::isfinite(p.sd)) out += fmt::format("sd = {}\n", num(p.sd));
+    out += fmt::format("[{}]\nvalue = {}\n", p.key, exact(p.value));
+    if (std::isfinite(p.sd)) out += fmt::format("sd = {}\n", exact(p.sd));
     out += fmt::format("n = {}\nunit = {}\nprovenance = {}\nmethod = {}\nsource = {}\n", p.n, toml_string(p.unit),
                        toml_string(to_string(p.provenance)), toml_string(p.method), toml_string(p.source));
     if (!p.note.empty()) out += fmt::format("note = {}\n", toml_string(p.note));
@@ -169,7 +177,7 @@ std::string drag_curve_toml(const DragFitResult& r) {
   if (b.in_sample.covariance_ok)
     for (int i = 0; i < info.n_coefficients; ++i) {
       out += i ? ",\n  [" : "\n  [";
-      for (int j = 0; j < info.n_coefficients; ++j) out += (j ? ", " : "") + num(b.in_sample.covariance(i, j));
+      for (int j = 0; j < info.n_coefficients; ++j) out += (j ? ", " : "") + exact(b.in_sample.covariance(i, j));
       out += "]";
     }
   out += fmt::format("]\ncovariance_ok = {}\nrms_ln_residual = {}\nceres = {}\n\n", b.in_sample.covariance_ok,

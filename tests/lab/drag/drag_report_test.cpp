@@ -7,6 +7,8 @@
 
 #include <doctest/doctest.h>
 
+#include "base/params.h"
+#include "base/units.h"
 #include "tests/run_command.h"
 
 namespace fs = std::filesystem;
@@ -36,6 +38,21 @@ TEST_CASE("drag-fit command: writes the table, CSVs and the curve TOML; paramete
   CHECK(toml.find("[drag_curve.scores.c_leave_one_suspension_out]") != std::string::npos);
   const auto spheres = slurp(out / "drag_fit_spheres.csv");
   CHECK(std::count(spheres.begin(), spheres.end(), '\n') == 122);
+  // The engine's way in: the chosen name, then each coefficient of that family by its registry name; the
+  // curve read back is the fitted one to the last bit.
+  const auto p = pastemix::Params::parse_file(out / "drag_curve.toml");
+  const auto dc = p.table("drag_curve");
+  const auto id = pastemix::drag::find_curve(dc.string("chosen"));
+  REQUIRE(id.has_value());
+  const auto& info = pastemix::drag::curve_info(*id);
+  pastemix::drag::DragCurve loaded{*id, {}};
+  for (int i = 0; i < info.n_coefficients; ++i)
+    loaded.coefficients.push_back(
+        dc.table(info.name).table(info.coefficient_names[i]).number("value"));
+  CHECK(pastemix::drag::check_coefficients(*id, loaded.coefficients).empty());
+  const auto fitted = pastemix::lab::drag::run_drag_fit(pastemix::test::source_path("datasets/thesis"),
+                                                        pastemix::units::g).best().in_sample.curve;
+  for (double re : {1e-3, 0.5, 30.0, 2000.0}) CHECK(loaded.cd(re) == fitted.cd(re));
   for (const auto& e : fs::directory_iterator(out))
     CHECK_MESSAGE(e.path().string().find(".partial-") == std::string::npos, e.path());
 }
