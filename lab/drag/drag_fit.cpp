@@ -155,6 +155,14 @@ CurveFit fit_drag_curve(CurveId family, std::span<const SettlingSphere> spheres,
     fit.at_bound[i] = coef[i] - info.lower[i] <= 1e-9 * span || info.upper[i] - coef[i] <= 1e-9 * span;
   }
   if (!options.covariance) return fit;
+  // A coefficient that ended on its bound is an active constraint, not a free estimate: hold it there so the
+  // covariance describes the free ones (otherwise (J^T J)^-1 reports a meaningless, huge, unconstrained sd).
+  std::vector<int> fixed;
+  for (int i = 0; i < p; ++i)
+    if (fit.at_bound[i]) fixed.push_back(i);
+  if (static_cast<int>(fixed.size()) == p) return fit;
+  if (!fixed.empty()) problem.SetManifold(coef.data(), new ceres::SubsetManifold(p, fixed));
+  const int free = p - static_cast<int>(fixed.size());
   ceres::Covariance::Options co;
   co.algorithm_type = ceres::DENSE_SVD;
   ceres::Covariance cov(co);
@@ -162,10 +170,11 @@ CurveFit fit_drag_curve(CurveId family, std::span<const SettlingSphere> spheres,
   if (cov.Compute(blocks, &problem)) {
     Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> m(p, p);
     cov.GetCovarianceBlock(coef.data(), coef.data(), m.data());
-    const double s2 = fit.rms * fit.rms * fit.n / (fit.n - p);
+    const double s2 = fit.rms * fit.rms * fit.n / (fit.n - free);
     fit.covariance = m * s2;
     fit.covariance_ok = true;
-    for (int i = 0; i < p; ++i) fit.sd[i] = std::sqrt(std::max(0.0, fit.covariance(i, i)));
+    for (int i = 0; i < p; ++i)
+      if (!fit.at_bound[i]) fit.sd[i] = std::sqrt(std::max(0.0, fit.covariance(i, i)));
   }
   return fit;
 }

@@ -8,7 +8,8 @@
 //    root implicitly, dv/dc = -(dG/dc)/(dG/dv), both partials by Jets. It starts from the log_cd fit.
 // Coefficients are bounded to the family's admissible box (base/drag_curves.h), so every fitted curve is
 // continuous, monotone and gives a unique terminal velocity. The covariance is Ceres's (J^T J)^-1 scaled by
-// the residual variance s^2 = sum r^2 / (n - p) (the residuals carry no measurement weights).
+// the residual variance s^2 = sum r^2 / (n - p) (the residuals carry no measurement weights); a coefficient
+// that ends on its bound is held there (an active constraint) and the covariance is that of the others.
 #pragma once
 
 #include <span>
@@ -47,8 +48,8 @@ struct CurveFit {
   int iterations = 0;
   bool covariance_ok = false;
   Eigen::MatrixXd covariance;   // of the coefficients (scaled by s^2); empty if not ok
-  std::vector<double> sd;       // NaN where unknown
-  std::vector<bool> at_bound;   // coefficient ended on its admissible bound (covariance is then local only)
+  std::vector<double> sd;       // NaN where unknown or held at a bound
+  std::vector<bool> at_bound;   // ended on its admissible bound: held there for the covariance (sd NaN)
   std::string brief_report;     // Ceres's one-line summary
 };
 

@@ -89,8 +89,11 @@ std::string score_table(const DragFitResult& r) {
   const auto& info = curve_info(b.family);
   out += fmt::format("\nChosen curve: {} ({}), fitted to {}:\n", info.name, info.formula, to_string(b.options.target));
   for (int i = 0; i < info.n_coefficients; ++i)
-    out += fmt::format("  {} = {} +- {}{}\n", info.coefficient_names[i], num(b.in_sample.curve.coefficients[i]),
-                       num(b.in_sample.sd[i]), b.in_sample.at_bound[i] ? "  (at its bound)" : "");
+    out += b.in_sample.at_bound[i]
+               ? fmt::format("  {} = {}  (on its bound: held there, no sd)\n", info.coefficient_names[i],
+                             num(b.in_sample.curve.coefficients[i]))
+               : fmt::format("  {} = {} +- {}\n", info.coefficient_names[i], num(b.in_sample.curve.coefficients[i]),
+                             num(b.in_sample.sd[i]));
   out += fmt::format("  rms residual {} (ln units), Ceres: {}\n", num(b.in_sample.rms), b.in_sample.brief_report);
   out += "(d) trapped = thesis model speed with Re' in 0.8-1.25, i.e. stuck at the 4.19 jump (v ~ sqrt(tau_y/rho_f)).\n";
   return out;
@@ -215,7 +218,7 @@ std::vector<Parameter> drag_curve_parameters(const DragFitResult& r) {
     p.method = method_of(b);
     p.provenance = Provenance::fitted;
     p.source = kSources;
-    if (b.in_sample.at_bound[i]) p.note = "ended on its admissible bound: the sd is a local (unconstrained) estimate";
+    if (b.in_sample.at_bound[i]) p.note = "ended on its admissible bound (an active constraint): held there, so no sd; the covariance is that of the other coefficients";
     out.push_back(p);
   }
   return out;
