@@ -40,17 +40,41 @@ std::vector<SettlingSphere> synthetic(const DragCurve& truth, Noise noise, doubl
   return out;
 }
 
-void check_recovery(const CurveFit& fit, const DragCurve& truth, double sigmas) {
-  REQUIRE(fit.covariance_ok);
-  for (std::size_t i = 0; i < truth.coefficients.size(); ++i) {
-    const double err = fit.curve.coefficients[i] - truth.coefficients[i];
-    CHECK_MESSAGE(std::abs(err) <= sigmas * fit.sd[i], "coefficient ", truth.info().coefficient_names[i], " = ",
-                  fit.curve.coefficients[i], " +- ", fit.sd[i], ", true ", truth.coefficients[i]);
+// Recovery within 2 sigma, checked as a calibration over `seeds` independent noise draws: each coefficient's
+// z = (fitted - true) / sd must lie within 2 in at least 80 % of the draws (95 % expected for a correct
+// covariance; 5 correlated coefficients make a single draw's "all within 2 sigma" a coin with p ~ 0.8), and the
+// mean z^2 must be near 1 (a covariance too large or too small by 1.6x in sd fails).
+void check_recovery(const DragCurve& truth, FitTarget target, double sigma, int seeds) {
+  FitOptions o;
+  o.target = target;
+  const auto n_coef = truth.coefficients.size();
+  int within = 0, total = 0;
+  double z2 = 0.0;
+  for (int seed = 1; seed <= seeds; ++seed) {
+    const auto noise = target == FitTarget::log_cd ? Noise::on_cd : Noise::on_velocity;
+    const auto fit = fit_drag_curve(truth.id, synthetic(truth, noise, sigma, 1000 + seed), o, g);
+    REQUIRE(fit.covariance_ok);
+    CHECK(fit.rms == doctest::Approx(sigma).epsilon(0.2));  // the residual scatter is the noise put in
+    for (std::size_t i = 0; i < n_coef; ++i) {
+      REQUIRE_MESSAGE(!fit.at_bound[i], "seed ", seed, " coefficient ", i, " ended on its bound");
+      const double z = (fit.curve.coefficients[i] - truth.coefficients[i]) / fit.sd[i];
+      within += std::abs(z) <= 2.0;
+      z2 += z * z;
+      ++total;
+    }
   }
+  MESSAGE(std::string(truth.info().name), " ", std::string(to_string(target)), ": ", within, " of ", total, " within 2 sigma, mean z^2 ",
+          z2 / total);
+  CHECK(within >= 0.8 * total);
+  CHECK(z2 / total == doctest::Approx(1.0).epsilon(0.6));
 }
 
+// Interior truths where every coefficient is identifiable. (Near b -> 1 the k/Re' and a Re'^-b terms of
+// power_blend become nearly collinear: with k = 10, a = 12, b = 0.75 a 5 % noise draw puts k on its bound in
+// about half the draws. The real-data fit sits in that corner; its curve is determined, k and a are not
+// separately.)
 const DragCurve kTruthSum{CurveId::power_sum, {22.0, 4.0, 0.6, 0.35}};
-const DragCurve kTruthBlend{CurveId::power_blend, {10.0, 12.0, 0.75, 0.4, 3.0}};
+const DragCurve kTruthBlend{CurveId::power_blend, {20.0, 5.0, 0.5, 0.4, 3.0}};
 
 }  // namespace
 
@@ -68,23 +92,13 @@ TEST_CASE("drag fit: noise-free synthetic data give back the curve (both targets
 }
 
 TEST_CASE("drag fit: noisy synthetic data recover the parameters within 2 sigma (log Cd target)") {
-  FitOptions o;
-  o.target = FitTarget::log_cd;
-  for (const auto& truth : {kTruthSum, kTruthBlend}) {
-    const auto fit = fit_drag_curve(truth.id, synthetic(truth, Noise::on_cd, 0.05, 20261122), o, g);
-    CHECK(fit.rms == doctest::Approx(0.05).epsilon(0.2));  // the residual scatter is the noise put in
-    check_recovery(fit, truth, 2.0);
-  }
+  check_recovery(kTruthSum, FitTarget::log_cd, 0.05, 10);
+  check_recovery(kTruthBlend, FitTarget::log_cd, 0.05, 10);
 }
 
 TEST_CASE("drag fit: noisy synthetic data recover the parameters within 2 sigma (velocity target)") {
-  FitOptions o;
-  o.target = FitTarget::velocity;
-  for (const auto& truth : {kTruthSum, kTruthBlend}) {
-    const auto fit = fit_drag_curve(truth.id, synthetic(truth, Noise::on_velocity, 0.03, 20261123), o, g);
-    CHECK(fit.rms == doctest::Approx(0.03).epsilon(0.2));
-    check_recovery(fit, truth, 2.0);
-  }
+  check_recovery(kTruthSum, FitTarget::velocity, 0.03, 10);
+  check_recovery(kTruthBlend, FitTarget::velocity, 0.03, 10);
 }
 
 TEST_CASE("drag fit: fixed curves and too few spheres are refused") {
