@@ -22,7 +22,9 @@ TEST_CASE("terminal velocity: Stokes curve, tau_y = 0, matches (rho_p - rho_f) g
     const double exact = stokes_terminal_velocity(s, g);
     for (const auto& tv : {solve_terminal_velocity(stokes, s, g), solve_terminal_velocity_monotone(stokes, s, g)}) {
       REQUIRE(tv.outcome == SettlingOutcome::settling);
-      CHECK(std::abs(tv.v / exact - 1.0) < 1e-6);
+      const double rel = std::abs(tv.v / exact - 1.0);
+      MESSAGE("d = ", s.d, " m: v = ", tv.v, " m/s, Stokes ", exact, " m/s, |rel. err.| ", rel);
+      CHECK(rel < 1e-6);
     }
     CHECK(solve_terminal_velocity(stokes, s, g).sign_changes == 1);
   }
@@ -60,6 +62,8 @@ TEST_CASE("terminal velocity: published 4.19 traps suspension 1, d = 50.8 mm, 26
   const double v_trap = std::sqrt(s.tau_y / s.rho_f);  // Re' = 1 when the viscous term is negligible
   CHECK(v_trap == doctest::Approx(0.1544).epsilon(1e-3));
   CHECK(tv.bracket_lo <= tv.bracket_hi);
+  MESSAGE("trap bracket [", tv.bracket_lo, ", ", tv.bracket_hi, "] m/s, G = ", tv.residual_lo, " / ",
+          tv.residual_hi, " N, sqrt(tau_y/rho_f) = ", v_trap, " m/s");
   CHECK(std::abs(tv.v / v_trap - 1.0) < 0.01);
   CHECK(tv.bracket_hi - tv.bracket_lo < 1e-9);
   // The residual jumps from + to - across the bracket: weight exceeds drag just below, drag exceeds it above.
