@@ -162,6 +162,12 @@ std::string drag_curve_toml(const DragFitResult& r) {
                      toml_string(b.options.loss == FitLoss::cauchy ? "cauchy" : "none"));
   out += fmt::format("selection = {}\n", toml_string("lowest leave-one-suspension-out mean |v_pred/v - 1| among the "
                                                      "fitted candidates (family x target)"));
+  double re_min = INFINITY, re_max = 0.0;
+  for (const auto& s : r.data.spheres) re_min = std::min(re_min, s.re), re_max = std::max(re_max, s.re);
+  out += fmt::format("# Fitted over this Re' range only; below it the curve is an extrapolation (e.g. k = 0 drops\n"
+                     "# the Stokes 1/Re' term, which a Newtonian fluid at Re' << 1 would need).\n"
+                     "fitted_re_prime_range = [{}, {}]\n",
+                     exact(re_min), exact(re_max));
   out += fmt::format("dataset = {}\nsource = {}\nn = {}\ng_m_s2 = {}\n\n", toml_string(r.dataset_dir.string()),
                      toml_string(kSources), b.in_sample.n, num(units::g));
   for (const auto& p : drag_curve_parameters(r)) {
