@@ -6,6 +6,9 @@
 #include <fmt/format.h>
 
 #include "base/error.h"
+#include "base/units.h"
+#include "lab/drag/drag_report.h"
+#include "lab/drag/settling.h"
 #include "lab/ingest/block_cut_corrections.h"
 #include "lab/ingest/rebound.h"
 #include "lab/ingest/slump.h"
@@ -82,6 +85,27 @@ void run_block_cut(const Params& t, const Manifest& m, ReduceResult& r) {
   r.block_cut = std::move(result);
 }
 
+// Settling spheres -> the drag curve. The family and fit target are named in the manifest because choosing
+// them needs the leave-one-suspension-out study of `pastemix lab drag-fit` (seconds of Ceres fits); reduce
+// refits that choice in-sample, with its covariance, so the engine gets coefficients with uncertainties.
+void run_drag_curve(const Params& t, const Manifest& m, ReduceResult& r) {
+  const std::string spheres = t.string("spheres"), suspensions = t.string("suspensions");
+  const std::string family_name = t.choice("family", {"power_sum", "power_blend"});
+  const std::string target = t.choice("target", {"velocity", "log_cd"});
+  const std::string chosen_by = t.string("chosen_by");
+  for (const auto& [key, file] : {std::pair{"spheres", spheres}, std::pair{"suspensions", suspensions}})
+    if (!std::filesystem::exists(m.dir() / file)) t.fail(key, fmt::format("file '{}' not found in {}", file, m.dir().string()));
+  const drag::SettlingData data = drag::read_settling_data(m.dir() / spheres, m.dir() / suspensions);
+  drag::Candidate c;
+  c.family = *pastemix::drag::find_curve(family_name);
+  c.options.target = target == "velocity" ? drag::FitTarget::velocity : drag::FitTarget::log_cd;
+  c.in_sample = drag::fit_drag_curve(c.family, data.spheres, c.options, units::g);
+  const std::string sources = fmt::format("{}; {}", spheres, suspensions);
+  for (auto& p : drag::candidate_parameters(c, chosen_by, c.in_sample.brief_report, sources)) r.parameters.push_back(p);
+  r.inputs.push_back(spheres);
+  r.inputs.push_back(suspensions);
+}
+
 void run_sieves(const Params& sieve, const Manifest& m, ReduceResult& r) {
   NamedSieve s;
   s.name = sieve.string("name");
@@ -112,6 +136,7 @@ const std::vector<ReduceStep>& reduce_steps() {
       {"tilt", "tilt tests -> static friction", run_tilt},
       {"mixing_program", "mixing-test programme -> per-case PSD, fall height, paste", run_mixing_program},
       {"block_cut", "cut blocks -> C and S grids per case (+ Table 3.3 correction)", run_block_cut},
+      {"drag_curve", "settling spheres -> fitted Cd(Re') drag curve", run_drag_curve},
   };
   return steps;
 }

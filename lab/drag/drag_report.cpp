@@ -198,8 +198,8 @@ std::string drag_curve_toml(const DragFitResult& r) {
   return out;
 }
 
-std::vector<Parameter> drag_curve_parameters(const DragFitResult& r) {
-  const auto& b = r.best();
+std::vector<Parameter> candidate_parameters(const Candidate& b, const std::string& choice_method,
+                                            const std::string& choice_note, const std::string& sources) {
   const auto& info = curve_info(b.family);
   std::vector<Parameter> out;
   Parameter chosen;
@@ -207,12 +207,10 @@ std::vector<Parameter> drag_curve_parameters(const DragFitResult& r) {
   chosen.text = std::string(info.name);
   chosen.n = b.in_sample.n;
   chosen.unit = std::string(1, '-');
-  chosen.method = "lowest leave-one-suspension-out mean |v_pred/v - 1| among fitted families x targets";
+  chosen.method = choice_method;
   chosen.provenance = Provenance::fitted;
-  chosen.source = kSources;
-  chosen.note = fmt::format("LOSO: mean {:.1f} %, median {:.1f} %; published 4.19: mean {:.1f} %, median {:.1f} %",
-                            100 * b.loso_score.mean_abs, 100 * b.loso_score.median_abs,
-                            100 * r.published_score.mean_abs, 100 * r.published_score.median_abs);
+  chosen.source = sources;
+  chosen.note = choice_note;
   out.push_back(chosen);
   for (int i = 0; i < info.n_coefficients; ++i) {
     Parameter p;
@@ -223,11 +221,21 @@ std::vector<Parameter> drag_curve_parameters(const DragFitResult& r) {
     p.unit = std::string(1, '-');
     p.method = method_of(b);
     p.provenance = Provenance::fitted;
-    p.source = kSources;
+    p.source = sources;
     if (b.in_sample.at_bound[i]) p.note = "ended on its admissible bound (an active constraint): held there, so no sd; the covariance is that of the other coefficients";
     out.push_back(p);
   }
   return out;
+}
+
+std::vector<Parameter> drag_curve_parameters(const DragFitResult& r) {
+  const auto& b = r.best();
+  return candidate_parameters(
+      b, "lowest leave-one-suspension-out mean |v_pred/v - 1| among fitted families x targets",
+      fmt::format("LOSO: mean {:.1f} %, median {:.1f} %; published 4.19: mean {:.1f} %, median {:.1f} %",
+                  100 * b.loso_score.mean_abs, 100 * b.loso_score.median_abs, 100 * r.published_score.mean_abs,
+                  100 * r.published_score.median_abs),
+      kSources);
 }
 
 std::vector<Parameter> drag_curve_parameters(const std::filesystem::path& dataset_dir) {

@@ -20,6 +20,10 @@ std::string drag_curve_toml(const DragFitResult& r);
 
 // Parameter-store entries: drag_curve.chosen (text = family) and drag_curve.<family>.<coef> (value, sd).
 std::vector<Parameter> drag_curve_parameters(const DragFitResult& r);
+// The parameters of one candidate's in-sample fit, with how it was chosen (`lab reduce` fits only the
+// family and target that `lab drag-fit` selected on held-out suspensions, named in the manifest).
+std::vector<Parameter> candidate_parameters(const Candidate& c, const std::string& choice_method,
+                                            const std::string& choice_note, const std::string& sources);
 // For `pastemix lab reduce`: runs the whole fit on the dataset folder and returns the entries above.
 std::vector<Parameter> drag_curve_parameters(const std::filesystem::path& dataset_dir);
 

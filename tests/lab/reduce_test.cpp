@@ -29,7 +29,7 @@ fs::path fresh_dir(const std::string& name) {
 
 TEST_CASE("reduce: every thesis step runs and yields the acceptance parameters") {
   const ReduceResult r = reduce(test::source_path("datasets/thesis"));
-  CHECK(r.steps_run == std::vector<std::string>{"slump", "rebound", "tilt", "mixing_program", "block_cut"});
+  CHECK(r.steps_run == std::vector<std::string>{"slump", "rebound", "tilt", "mixing_program", "block_cut", "drag_curve"});
   auto value = [&](const std::string& key) {
     for (const auto& p : r.parameters)
       if (p.key == key) return p.value;
@@ -46,6 +46,12 @@ TEST_CASE("reduce: every thesis step runs and yields the acceptance parameters")
   CHECK(r.block_cut->corrected.size() == 5);
   CHECK(r.mixing_cases.size() == 7);
   for (const auto& p : r.parameters) CHECK(!p.source.empty());
+  // The drag curve named in the manifest, refitted with uncertainties the engine can load by name.
+  bool chosen = false;
+  for (const auto& p : r.parameters)
+    if (p.key == "drag_curve.chosen") chosen = p.text == "power_blend";
+  CHECK(chosen);
+  CHECK(value("drag_curve.power_blend.c") > 0.0);
 }
 
 TEST_CASE("reduce CLI: writes parameters.toml (valid TOML), lab.h5 (4x3x3 grids) and one PNG per case") {
