@@ -41,6 +41,7 @@ struct CommonOpts {
   std::optional<double> surface_z, paste_density, solids, rock_density, K;
   std::optional<int> snapshot, lab_case;
   double rho_s = 2710.0, e_f = 0.6;
+  double no_rock_below_g = 1e3 * kLabMassResolution;  // g
   std::string lab_h5 = "out/lab/lab.h5", out;
   std::vector<std::string> results;
 };
@@ -178,6 +179,8 @@ void run_score(const CommonOpts& o) {
   if (L.count[0] != 4 || L.count[1] != 3 || L.layers != 3)
     throw InputError("--blocks", 0, "", "scoring compares with the lab's 4 x 3 blocks in 3 layers; keep that grid");
   const ResultOverrides over = overrides_of(o);
+  if (!(o.no_rock_below_g >= 0.0) || !std::isfinite(o.no_rock_below_g))
+    throw InputError("--no-rock-below", 0, "", "must be >= 0 (g)");
   const LabCase lc = read_lab_case(o.lab_h5, *o.lab_case, true);
   const double K = o.K ? *o.K : lc.K;
   LabCase lab = lc;
@@ -194,7 +197,7 @@ void run_score(const CommonOpts& o) {
     maps.push_back(mixing_map(in, ParticleView{r.position, r.radius, r.density}));
     reals.push_back({r.path, r.seed, r.scene_hash, r.snapshot, r.time_s, 0.0});
   }
-  const Score s = score_against_lab(lab, maps, reals);
+  const Score s = score_against_lab(lab, maps, reals, 1e-3 * o.no_rock_below_g);
   fmt::print("{}", score_table(s));
 
   const fs::path out = o.out;
@@ -226,6 +229,9 @@ void register_analysis_commands(CLI::App& app) {
   score->add_option("RESULT", o->results, "result files (HDF5), one per seeded realization")->required();
   score->add_option("--lab", o->lab_case, "mixing case to score against (1-5 have lab grids)")->required();
   score->add_option("--out", o->out, "output folder")->default_val("out/score");
+  score->add_option("--no-rock-below", o->no_rock_below_g,
+                    "for the S classes, model blocks with less rock (g) count as 'no rock' (the lab weighed to 0.1 g)")
+      ->capture_default_str();
   add_common(score, *o);
   score->callback([o] { run_score(*o); });
 }

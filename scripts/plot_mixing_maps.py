@@ -135,7 +135,7 @@ def plot_score(csv_path, n_realizations, title, out_dir):
             mod_l = [[f"{mean[i, j, k]:.1f}\n\u00b1{sd[i, j, k]:.1f}" for j in range(nj)] for i in range(ni)]
         else:
             mod_l = [[f"{mean[i, j, k]:.1f}" for j in range(nj)] for i in range(ni)]
-        dif_l = [[f"{err[i, j, k]:+.1f}" + ("" if cls_model[i, j, k] != "no" else "\nS class \u2260")
+        dif_l = [[f"{err[i, j, k]:+.1f}" + ("" if cls_model[i, j, k] != "no" else "\n(S class \u2260)")
                   for j in range(nj)] for i in range(ni)]
         m0 = draw_panel(axes[0], xe, ye, lab[:, :, k], lab_l, "YlOrBr", norm_c, "lab C (%)", ids)
         draw_panel(axes[1], xe, ye, mean[:, :, k], mod_l, "YlOrBr", norm_c,

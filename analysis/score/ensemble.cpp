@@ -28,11 +28,12 @@ const char* to_string(SClass c) {
   return "?";
 }
 
-Ensemble ensemble(const std::vector<MixingMap>& maps) {
+Ensemble ensemble(const std::vector<MixingMap>& maps, double no_rock_below) {
   if (maps.empty()) throw std::invalid_argument("ensemble of no maps");
   Ensemble e;
   e.layout = maps.front().layout;
   e.n = static_cast<int>(maps.size());
+  e.no_rock_below = no_rock_below;
   const std::size_t nb = e.layout.block_count();
   for (const auto& m : maps)
     if (m.C.size() != nb) throw std::invalid_argument("ensemble: maps on different grids");
@@ -45,7 +46,10 @@ Ensemble ensemble(const std::vector<MixingMap>& maps) {
     e.C.push_back(over([b](const MixingMap& m) { return m.C[b]; }));
     e.rock_mass.push_back(over([b](const MixingMap& m) { return m.rock_mass[b]; }));
     std::array<int, 4> votes{};  // unknown, no_rock, partial, capped
-    for (const auto& m : maps) ++votes[static_cast<std::size_t>(static_cast<int>(s_class(m.flag[b])) + 1)];
+    for (const auto& m : maps) {
+      const SClass c = m.rock_mass[b] < no_rock_below ? SClass::no_rock : s_class(m.flag[b]);
+      ++votes[static_cast<std::size_t>(static_cast<int>(c) + 1)];
+    }
     int best = 0;
     for (int c = 1; c < 4; ++c)
       if (votes[static_cast<std::size_t>(c)] > votes[static_cast<std::size_t>(best)]) best = c;

@@ -21,11 +21,17 @@ struct Ensemble {
   std::vector<Summary> C;           // per block, fraction
   std::vector<Summary> rock_mass;   // per block, kg
   std::vector<SClass> s_class;      // per block: the majority class (ties: the lower class)
+  double no_rock_below = 0.0;       // kg, see kLabMassResolution
   std::vector<double> s_class_share;  // per block: share of realizations in that class
   Summary poured, mixed, unmixed, outside_grid;  // kg
 };
 
+// The lab weighed block masses to 0.1 g (Table 3.2 prints kg to 4 decimals), so a block it reports without
+// rock may hold up to 0.05 g. For the S class vote, a model block with less rock than `no_rock_below` (kg)
+// counts as "no rock" like the lab's; C itself is never altered.
+inline constexpr double kLabMassResolution = 0.5e-4;  // kg, half the last printed digit of Table 3.2
+
 // All maps must share one layout (same block count); throws std::invalid_argument otherwise.
-Ensemble ensemble(const std::vector<MixingMap>& maps);
+Ensemble ensemble(const std::vector<MixingMap>& maps, double no_rock_below = kLabMassResolution);
 
 }  // namespace pastemix::analysis

@@ -34,17 +34,19 @@ Mae mae_of(const lab::BlockGrid& lab, Get model_C) {
 
 }  // namespace
 
-Score score_against_lab(const LabCase& lab, const std::vector<MixingMap>& maps, std::vector<Realization> reals) {
+Score score_against_lab(const LabCase& lab, const std::vector<MixingMap>& maps, std::vector<Realization> reals,
+                        double no_rock_below) {
   if (maps.size() != reals.size()) throw std::invalid_argument("score: one realization record per map");
   const BlockLayout& L = maps.front().layout;
   if (L.count[0] != lab::kBlocksI || L.count[1] != lab::kBlocksJ || L.layers != lab::kLayers)
     throw std::invalid_argument("score: the model grid must have the lab's 4 x 3 blocks and 3 layers");
-  const Ensemble e = ensemble(maps);
+  const Ensemble e = ensemble(maps, no_rock_below);
   const lab::BlockGrid& g = lab.grid;
   Score s;
   s.case_id = lab.case_id;
   s.K = lab.K;
   s.K_source = lab.K_source;
+  s.no_rock_below = no_rock_below;
   for (std::size_t r = 0; r < maps.size(); ++r)
     reals[r].mae_pp = mae_of(g, [&](int b) { return maps[r].C[L.index(b / 9 + 1, b / 3 % 3 + 1, b % 3 + 1)]; }).mae;
   std::vector<double> per_real;

@@ -57,6 +57,7 @@ struct Score {
   std::vector<CentreLayer> centre;
   double centre_mae_pp = 0.0;
   int classes_compared = 0, classes_agree = 0;
+  double no_rock_below = 0.0;  // kg: model blocks with less rock count as 'no rock' in the S classes
   double cone_221 = 0.0, cone_321 = 0.0, lab_cone_221 = 0.0, lab_cone_321 = 0.0;  // fractions
   bool cone_reproduced = false;
   Summary poured, mixed, unmixed, outside_grid;  // kg
@@ -64,7 +65,8 @@ struct Score {
 };
 
 // `maps[r]` belongs to `realizations[r]`. The maps must be on a 4 x 3 x 3 layout (std::invalid_argument).
-Score score_against_lab(const LabCase& lab, const std::vector<MixingMap>& maps, std::vector<Realization> realizations);
+Score score_against_lab(const LabCase& lab, const std::vector<MixingMap>& maps, std::vector<Realization> realizations,
+                        double no_rock_below = kLabMassResolution);
 
 std::string score_table(const Score& s);  // the printed table
 std::string score_csv(const Score& s);    // one row per block

@@ -75,8 +75,9 @@ std::string score_table(const Score& s) {
     o += fmt::format("  {:<6} {:>7} {:>8} {:>6} {:>+8.1f}\n", c.k, pct(c.lab_C), pct(c.model_C),
                      n > 1 ? pct(c.model_sd) : "", c.error_pp);
   o += fmt::format("  centre-column mean absolute error: {:.2f} pp\n", s.centre_mae_pp);
-  o += fmt::format("S classes (no rock / S < 100 % / capped): {} of {} compared blocks agree\n", s.classes_agree,
-                   s.classes_compared);
+  o += fmt::format("S classes (no rock / S < 100 % / capped; model blocks with < {:g} g rock count as no rock, the "
+                   "lab's weighing resolution): {} of {} compared blocks agree\n",
+                   1e3 * s.no_rock_below, s.classes_agree, s.classes_compared);
   o += fmt::format("unmixed cone: model C(M_221) = {} %, C(M_321) = {} % (lab {} %, {} %): {}\n", pct(s.cone_221),
                    pct(s.cone_321), pct(s.lab_cone_221), pct(s.lab_cone_321),
                    s.cone_reproduced ? "reproduced (both >= 90 %)" : "NOT reproduced (needs both >= 90 %)");
@@ -112,8 +113,9 @@ std::string score_toml(const Score& s, const std::string& software, const std::s
   o += fmt::format("realization_C_mean_abs_error_pp = {}  # mean over single realizations\n"
                    "realization_C_mean_abs_error_sd_pp = {}\n",
                    toml_number(s.realization_mae_pp.mean), toml_number(s.realization_mae_pp.sd));
-  o += fmt::format("centre_column_mean_abs_error_pp = {}\nS_classes_compared = {}\nS_classes_agree = {}\n\n",
-                   toml_number(s.centre_mae_pp), s.classes_compared, s.classes_agree);
+  o += fmt::format("centre_column_mean_abs_error_pp = {}\nS_classes_compared = {}\nS_classes_agree = {}\n"
+                   "S_no_rock_below_g = {}  # model blocks with less rock count as 'no rock' (lab resolution)\n\n",
+                   toml_number(s.centre_mae_pp), s.classes_compared, s.classes_agree, toml_number(1e3 * s.no_rock_below));
   o += "[centre_column]  # mean of M_22k and M_32k, k = layer 1 (top) .. 3\n";
   std::vector<std::string> lab, model, sd, err;
   for (const auto& c : s.centre) {

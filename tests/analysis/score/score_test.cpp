@@ -93,3 +93,23 @@ TEST_CASE("score: the lab case reader tells unknown cases from cases without a g
   CHECK(!six.has_grid);
   CHECK(std::isnan(six.K));
 }
+
+TEST_CASE("score: a grain below the lab's 0.1 g weighing resolution counts as no rock in the S classes") {
+  ScratchDir d("score_grain");
+  ResultSpec r = synthetic_result();
+  write_result(d / "lab_like.h5", r);
+  const MixingMap without = map_of(d / "lab_like.h5", 3570);
+  r.final.push_back({{0.175, 0.1375, 0.015}, 0.001});  // 0.0116 g in M_433
+  write_result(d / "r.h5", r);
+  const MixingMap with = map_of(d / "r.h5", 3570);
+  write_lab(d / "lab.h5", lab_equal_to(without, 0.0));
+  const LabCase lab = read_lab_case(d / "lab.h5", 3, true);
+  const std::size_t b = static_cast<std::size_t>(pastemix::lab::block_index(4, 3, 3));
+  CHECK(with.flag[b] == static_cast<int>(pastemix::lab::SFlag::capped));  // the lab formula itself is unchanged
+  const Score s = score_against_lab(lab, {with}, {Realization{}});
+  CHECK(s.blocks[b].model_class == SClass::no_rock);
+  CHECK(s.classes_agree == 36);
+  const Score strict = score_against_lab(lab, {with}, {Realization{}}, 0.0);
+  CHECK(strict.blocks[b].model_class == SClass::capped);
+  CHECK(strict.classes_agree == 35);
+}
