@@ -94,6 +94,8 @@ std::string maps_table(const MixingMap& m, const ResultSnapshot& r, const Mixing
                    "the surface (unmixed) {:.6f}; relative error {:.1e}\n",
                    m.poured, m.in_blocks, m.below_grid, m.beside_grid, m.above_surface, m.conservation_error());
   o += fmt::format("mixed (submerged) {:.6f} kg, unmixed {:.6f} kg\n", m.mixed(), m.unmixed());
+  if (m.conservation_error() > 1e-9)
+    o += fmt::format("warning: the accounting misses {:.1e} of the poured mass (more than 1e-9)\n", m.conservation_error());
   if (m.overfull_blocks)
     o += fmt::format("warning: {} block(s) hold more rock volume than their own volume (particle overlaps); their "
                      "paste volume is set to 0\n",

@@ -103,7 +103,8 @@ Score score_against_lab(const LabCase& lab, const std::vector<MixingMap>& maps, 
   s.cone_321 = s.blocks[static_cast<std::size_t>(lab::block_index(3, 2, 1))].model_C.mean;
   s.lab_cone_221 = g.C[static_cast<std::size_t>(lab::block_index(2, 2, 1))];
   s.lab_cone_321 = g.C[static_cast<std::size_t>(lab::block_index(3, 2, 1))];
-  s.cone_reproduced = s.cone_221 >= 0.9 && s.cone_321 >= 0.9;
+  s.model_cone = s.cone_221 >= 0.9 && s.cone_321 >= 0.9;
+  s.lab_cone = s.lab_cone_221 >= 0.9 && s.lab_cone_321 >= 0.9;
   s.poured = e.poured;
   s.mixed = e.mixed;
   s.unmixed = e.unmixed;

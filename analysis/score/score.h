@@ -7,7 +7,8 @@
 //     k = 1..3, model vs lab (the mean of the two blocks) and its error;
 //   S class agreement per block: no rock / S < 100 % / capped at 100 % (blocks where either class is unknown,
 //     e.g. case 1 without K, are not compared);
-//   the unmixed-cone check: model C >= 90 % in M_221 and M_321 (the crater of unmixed rock under the funnel);
+//   the unmixed-cone check: C >= 90 % in M_221 and M_321 (the crater of unmixed rock under the funnel), for the
+//     model and for the lab (cases 2-3 have one, case 1 does not): reproduced when both have it;
 //   mixed (submerged) and unmixed (above the surface) rock masses, with the lab's recovered rock mass.
 #pragma once
 
@@ -59,7 +60,7 @@ struct Score {
   int classes_compared = 0, classes_agree = 0;
   double no_rock_below = 0.0;  // kg: model blocks with less rock count as 'no rock' in the S classes
   double cone_221 = 0.0, cone_321 = 0.0, lab_cone_221 = 0.0, lab_cone_321 = 0.0;  // fractions
-  bool cone_reproduced = false;
+  bool model_cone = false, lab_cone = false;  // C >= 90 % in both M_221 and M_321
   Summary poured, mixed, unmixed, outside_grid;  // kg
   double lab_recovered_rock = 0.0;               // kg, sum of the lab's M_wr over the 36 blocks
 };

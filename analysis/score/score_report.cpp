@@ -54,8 +54,8 @@ std::string score_table(const Score& s) {
   const int n = static_cast<int>(s.realizations.size());
   std::string o = fmt::format("score: mixing case {} vs {} realization{} (seed{} {})\n", s.case_id, n,
                               n == 1 ? "" : "s", n == 1 ? "" : "s", seeds_of(s));
-  o += fmt::format("K = {} kg/m3 ({})\n", std::isfinite(s.K) ? fmt::format("{:g}", s.K) : "unknown",
-                   std::isfinite(s.K) ? s.K_source : "S classes of rock blocks not compared");
+  o += std::isfinite(s.K) ? fmt::format("K = {:g} kg/m3 ({})\n", s.K, s.K_source)
+                          : std::string("K unknown for this case: S not computed, S classes of rock blocks not compared\n");
   o += fmt::format("{:<7} {:>7} {:>8} {:>6} {:>8}   {:<16} {:<16}\n", "block", "lab C%", "model C%",
                    n > 1 ? "sd" : "", "err pp", "S class lab", "S class model");
   for (const auto& b : s.blocks) {
@@ -78,9 +78,11 @@ std::string score_table(const Score& s) {
   o += fmt::format("S classes (no rock / S < 100 % / capped; model blocks with < {:g} g rock count as no rock, the "
                    "lab's weighing resolution): {} of {} compared blocks agree\n",
                    1e3 * s.no_rock_below, s.classes_agree, s.classes_compared);
-  o += fmt::format("unmixed cone: model C(M_221) = {} %, C(M_321) = {} % (lab {} %, {} %): {}\n", pct(s.cone_221),
-                   pct(s.cone_321), pct(s.lab_cone_221), pct(s.lab_cone_321),
-                   s.cone_reproduced ? "reproduced (both >= 90 %)" : "NOT reproduced (needs both >= 90 %)");
+  const char* verdict = s.model_cone == s.lab_cone ? (s.lab_cone ? "reproduced" : "agrees (no cone in either)")
+                        : (s.lab_cone ? "NOT reproduced" : "the model has a cone the lab does not");
+  o += fmt::format("unmixed cone (C >= 90 % in M_221 and M_321): model {} ({} %, {} %), lab {} ({} %, {} %): {}\n",
+                   s.model_cone ? "yes" : "no", pct(s.cone_221), pct(s.cone_321), s.lab_cone ? "yes" : "no",
+                   pct(s.lab_cone_221), pct(s.lab_cone_321), verdict);
   o += fmt::format("rock: poured {}; mixed (submerged) {}; unmixed (above the surface) {}; outside the grid (in "
                    "the mixed mass) {}; lab recovered {:.4f} kg in its 36 blocks\n",
                    kg(s.poured, n), kg(s.mixed, n), kg(s.unmixed, n), kg(s.outside_grid, n), s.lab_recovered_rock);
@@ -128,9 +130,10 @@ std::string score_toml(const Score& s, const std::string& software, const std::s
                    fmt::join(lab, ", "), fmt::join(model, ", "), fmt::join(sd, ", "), fmt::join(err, ", "));
   o += "[unmixed_cone]  # reproduced when the model's C >= 90 % in both top centre blocks\n";
   o += fmt::format("model_C_M_221_percent = {}\nmodel_C_M_321_percent = {}\nlab_C_M_221_percent = {}\n"
-                   "lab_C_M_321_percent = {}\nreproduced = {}\n\n",
+                   "lab_C_M_321_percent = {}\nmodel_has_cone = {}\nlab_has_cone = {}\n"
+                   "reproduced = {}  # both have it\n\n",
                    toml_number(100 * s.cone_221), toml_number(100 * s.cone_321), toml_number(100 * s.lab_cone_221),
-                   toml_number(100 * s.lab_cone_321), s.cone_reproduced ? "true" : "false");
+                   toml_number(100 * s.lab_cone_321), s.model_cone, s.lab_cone, s.model_cone && s.lab_cone);
   o += "[rock_mass_kg]  # ensemble mean and sd; mixed = submerged (in blocks + outside the grid)\n";
   auto ms = [&](const char* name, const Summary& m) {
     o += fmt::format("{} = {}\n{}_sd = {}\n", name, toml_number(m.mean), name, toml_number(m.sd));

@@ -59,7 +59,8 @@ TEST_CASE("score: a result equal to the lab grid scores 0 error and every S clas
   CHECK(s.centre_mae_pp == 0.0);
   CHECK(s.classes_compared == 36);
   CHECK(s.classes_agree == 36);
-  CHECK(!s.cone_reproduced);  // the synthetic M_221 holds little rock
+  CHECK(!s.model_cone);  // the synthetic M_221 holds little rock
+  CHECK(!s.lab_cone);
   CHECK(s.unmixed.mean == doctest::Approx(2760 * 4.0 / 3.0 * M_PI * 2.16e-7).epsilon(1e-12));
   CHECK(s.lab_recovered_rock == doctest::Approx(m.in_blocks).epsilon(1e-12));
   // The block table, csv and toml carry the same numbers.
