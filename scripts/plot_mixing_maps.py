@@ -135,7 +135,7 @@ def plot_score(csv_path, n_realizations, title, out_dir):
             mod_l = [[f"{mean[i, j, k]:.1f}\n\u00b1{sd[i, j, k]:.1f}" for j in range(nj)] for i in range(ni)]
         else:
             mod_l = [[f"{mean[i, j, k]:.1f}" for j in range(nj)] for i in range(ni)]
-        dif_l = [[f"{err[i, j, k]:+.1f}" + ("" if cls_model[i, j, k] != "no" else "\n(S class \u2260)")
+        dif_l = [[f"{err[i, j, k]:+.1f}" + ("" if cls_model[i, j, k] != "no" else "\nS \u2260")
                   for j in range(nj)] for i in range(ni)]
         m0 = draw_panel(axes[0], xe, ye, lab[:, :, k], lab_l, "YlOrBr", norm_c, "lab C (%)", ids)
         draw_panel(axes[1], xe, ye, mean[:, :, k], mod_l, "YlOrBr", norm_c,
@@ -150,6 +150,7 @@ def plot_score(csv_path, n_realizations, title, out_dir):
         layer_mae = np.nanmean(np.abs(err[:, :, k]))
         fig.suptitle(f"{title}: layer {k + 1}{' (top)' if k == 0 else ''}", fontsize=12, y=0.97)
         fig.text(0.5, 0.875, f"mean |C error| this layer {layer_mae:.1f} pp, all 36 blocks {mae:.1f} pp. "
+                 "S \u2260: the S class (no rock / < 100 % / capped) differs from the lab's. "
                  "Blocks seen from above: i = 1..4 along x (20 cm side), j = 1..3 along y (16.5 cm side).",
                  ha="center", fontsize=8.5, color="0.3")
         fig.savefig(f"{out_dir}/score_layer_{k + 1}.png", dpi=100, format="png", pil_kwargs={"compress_level": 2})
