@@ -217,6 +217,7 @@ void run_score(const CommonOpts& o) {
 }  // namespace
 
 void register_analysis_commands(CLI::App& app) {
+  // One options struct per subcommand: CLI11's default_val writes into the bound variable at registration.
   auto o = std::make_shared<CommonOpts>();
   auto* maps = app.add_subcommand("maps", "Mixing map (C, S per block) of a result file on the lab's block grid");
   maps->add_option("RESULT", o->results, "result file (HDF5) of `pastemix run`")->required()->expected(1);
@@ -225,6 +226,7 @@ void register_analysis_commands(CLI::App& app) {
   add_common(maps, *o);
   maps->callback([o] { run_maps(*o); });
 
+  o = std::make_shared<CommonOpts>();
   auto* score = app.add_subcommand("score", "Score one or more results (an ensemble) against a lab case's grid");
   score->add_option("RESULT", o->results, "result files (HDF5), one per seeded realization")->required();
   score->add_option("--lab", o->lab_case, "mixing case to score against (1-5 have lab grids)")->required();
