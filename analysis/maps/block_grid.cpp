@@ -8,7 +8,7 @@
 
 namespace pastemix::analysis {
 
-BlockMasses rock_in_blocks(const BlockGrid& grid, double surface_z, const ParticleView& particles) {
+BlockMasses rock_in_blocks(const BlockLayout& grid, double surface_z, const ParticleView& particles) {
   constexpr double kPi = 3.14159265358979323846;
   BlockMasses out;
   const std::size_t nb = grid.block_count();
@@ -51,7 +51,7 @@ BlockMasses rock_in_blocks(const BlockGrid& grid, double surface_z, const Partic
                   surface_z - k * grid.layer_thickness}};
           const double v = sphere_box_volume(c, r, b);
           if (v <= 0.0) continue;
-          const std::size_t idx = grid.index(i, j, k);
+          const std::size_t idx = grid.index(i + 1, j + 1, k + 1);  // loops are 0-based
           out.rock_volume[idx] += v;
           out.rock_mass[idx] += rho * v;
           v_blocks += v;

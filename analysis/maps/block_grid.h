@@ -20,16 +20,18 @@
 
 namespace pastemix::analysis {
 
-struct BlockGrid {
+// Named BlockLayout (not BlockGrid) because lab::BlockGrid is a case's measured grid; this is only geometry.
+struct BlockLayout {
   std::array<double, 2> origin{0.0, 0.0};  // m, (x, y) of the grid corner with i = 1, j = 1
   std::array<int, 2> count{4, 3};           // blocks along x (i) and y (j)
   std::array<double, 2> size{0.05, 0.055};  // m, block size along x and y
   int layers = 3;                           // k = 1 (top) ... layers
   double layer_thickness = 0.03;            // m
   std::size_t block_count() const { return static_cast<std::size_t>(count[0] * count[1] * layers); }
-  // Flat index of block (i, j, k), all 0-based: k slowest, then j, then i (the lab's M_ijk order by layer).
+  // Flat index of block M_ijk, all 1-based (k = 1 the top layer), row-major [i][j][k]: the same order as
+  // lab::block_index, so a model grid and a lab grid of the default layout index identically.
   std::size_t index(int i, int j, int k) const {
-    return static_cast<std::size_t>((k * count[1] + j) * count[0] + i);
+    return static_cast<std::size_t>(((i - 1) * count[1] + (j - 1)) * layers + (k - 1));
   }
 };
 
@@ -52,6 +54,6 @@ struct BlockMasses {
 };
 
 // Distributes rock mass over the grid whose top is at `surface_z` (m, the final free surface).
-BlockMasses rock_in_blocks(const BlockGrid& grid, double surface_z, const ParticleView& particles);
+BlockMasses rock_in_blocks(const BlockLayout& grid, double surface_z, const ParticleView& particles);
 
 }  // namespace pastemix::analysis

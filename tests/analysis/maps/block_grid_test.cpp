@@ -16,29 +16,29 @@ double sphere_mass(double r, double rho) { return 4.0 / 3.0 * kPi * r * r * r * 
 }  // namespace
 
 TEST_CASE("block grid: a sphere inside one block puts all its mass there") {
-  BlockGrid grid;  // 4 x 3 blocks of 5 x 5.5 cm, 3 layers of 3 cm, surface at z = 0.10
-  std::vector<std::array<double, 3>> pos{{0.075, 0.0825, 0.085}};  // block i=1, j=1, layer k=0 (0-based)
+  BlockLayout grid;  // 4 x 3 blocks of 5 x 5.5 cm, 3 layers of 3 cm, surface at z = 0.10
+  std::vector<std::array<double, 3>> pos{{0.075, 0.0825, 0.085}};  // block M_222 (x 5-10 cm, y 5.5-11 cm, depth 0-3 cm)
   std::vector<double> r{0.004}, rho{2760};
   auto m = rock_in_blocks(grid, 0.10, ParticleView{pos, r, rho});
-  CHECK(m.rock_mass[grid.index(1, 1, 0)] == doctest::Approx(sphere_mass(0.004, 2760)).epsilon(1e-12));
+  CHECK(m.rock_mass[grid.index(2, 2, 1)] == doctest::Approx(sphere_mass(0.004, 2760)).epsilon(1e-12));
   CHECK(m.above_surface == 0.0);
   CHECK(m.in_blocks == doctest::Approx(m.total).epsilon(1e-12));
 }
 
 TEST_CASE("block grid: a sphere cut by the surface is half unmixed") {
-  BlockGrid grid;
+  BlockLayout grid;
   std::vector<std::array<double, 3>> pos{{0.075, 0.0825, 0.10}};
   std::vector<double> r{0.004}, rho{2760};
   auto m = rock_in_blocks(grid, 0.10, ParticleView{pos, r, rho});
   CHECK(m.above_surface == doctest::Approx(0.5 * m.total).epsilon(1e-10));
-  CHECK(m.rock_mass[grid.index(1, 1, 0)] == doctest::Approx(0.5 * m.total).epsilon(1e-10));
+  CHECK(m.rock_mass[grid.index(2, 2, 1)] == doctest::Approx(0.5 * m.total).epsilon(1e-10));
 }
 
 TEST_CASE("block grid: mass conservation within 1e-9 relative for rock everywhere") {
   // Rock scattered across the grid, straddling block faces, above the surface, below the grid and beside it
   // (the grid footprint is smaller than the scatter region).
   pastemix::Rng rng(3);
-  BlockGrid grid;
+  BlockLayout grid;
   grid.origin = {0.01, 0.005};
   std::vector<std::array<double, 3>> pos;
   std::vector<double> r, rho;
