@@ -1,0 +1,64 @@
+// SPDX-License-Identifier: MIT
+// Contacts: the particle-pair list (SoA), its history, and the two force passes.
+//
+// Determinism without atomics: the pair pass writes one force (and the two torques) per pair into the
+// SoA; the gather pass then sums, per particle, its pairs in ascending pair order through a CSR index.
+// Both passes are parallel over independent outputs, so the result is bitwise the same for any number of
+// threads. Wall contacts are computed per particle (a particle owns its wall contacts), in wall order.
+//
+// History (tangential spring, rolling spring) is keyed by the sorted pair of particle ids and carried
+// from the old list to the new one at every neighbour rebuild, so a lasting contact keeps its spring.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "model/laws/contact_law.h"
+#include "model/neighbor.h"
+#include "model/particles.h"
+#include "model/walls.h"
+
+namespace pastemix::model {
+
+struct PairList {
+  int width = 0;                       // history doubles per contact
+  std::vector<std::uint32_t> i, j;     // dense indices
+  std::vector<std::uint64_t> key;      // (min id << 32) | max id
+  std::vector<double> history;         // width per pair
+  std::vector<Vec3> force_i;           // N, on i (j gets minus)
+  std::vector<Vec3> torque_i, torque_j;  // N.m (rotation only)
+  std::vector<double> roll_i, roll_j;  // N.m, constant-torque rolling capacity (rotation only)
+  std::vector<std::uint8_t> touching;
+  // CSR: for particle p, entries [start[p], start[p+1]) of `entry` = pair * 2 + (0 if p is i, 1 if j).
+  std::vector<std::uint32_t> start, entry;
+
+  std::size_t size() const { return i.size(); }
+  // Replaces the pairs by `c`, carrying over the history of pairs present before.
+  void rebuild(const CandidatePairs& c, const Particles& p);
+};
+
+// Per particle and wall: history slots and a touching flag.
+struct WallContacts {
+  int width = 0;
+  int walls = 0;
+  std::vector<double> history;           // (particle * walls + wall) * width
+  std::vector<std::uint8_t> touching;    // particle * walls + wall
+  void resize(std::size_t particles, int n_walls, int history_width);
+};
+
+struct StepContext {
+  double t = 0.0;    // s, time at which forces are evaluated
+  double dt = 0.0;   // s
+  int n_materials = 0;
+  RollingLaw rolling = RollingLaw::none;
+};
+
+// Pair forces into the PairList SoA (law chosen once here with std::visit).
+void compute_pair_forces(const LawTable& laws, const StepContext& ctx, const Particles& p, PairList& pairs);
+// Sums pair forces into p.f / p.torque / p.rolling_capacity (overwrites them).
+void gather_pair_forces(const PairList& pairs, Particles& p);
+// Adds wall forces into p.f / p.torque / p.rolling_capacity.
+void add_wall_forces(const LawTable& laws, const StepContext& ctx, const std::vector<Wall>& walls,
+                     Particles& p, WallContacts& wc);
+
+}  // namespace pastemix::model
