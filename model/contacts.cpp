@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "model/contacts.h"
 
+#include "model/parallel.h"
+
 #include <algorithm>
 #include <variant>
 
@@ -20,7 +22,7 @@ void pair_pass(const std::vector<typename Law::Params>& table, const StepContext
   const bool constant_roll = ctx.rolling == RollingLaw::constant_torque;
   const long n = static_cast<long>(L.size());
   const int w = L.width;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= parallel_min_items)
   for (long k = 0; k < n; ++k) {
     const std::uint32_t a = L.i[k], b = L.j[k];
     const Vec3 d = p.x[b] - p.x[a];
@@ -83,7 +85,7 @@ void wall_pass(const std::vector<typename Law::Params>& table, const StepContext
     active[k] = walls[k].active(ctx.t);
   }
   const long n = static_cast<long>(p.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= parallel_min_items)
   for (long a = 0; a < n; ++a) {
     for (int k = 0; k < nw; ++k) {
       const std::size_t slot = static_cast<std::size_t>(a) * nw + k;
@@ -205,7 +207,7 @@ void add_wall_forces(const LawTable& laws, const StepContext& ctx, const std::ve
 void gather_pair_forces(const PairList& L, Particles& p) {
   const long n = static_cast<long>(p.size());
   const bool rot = p.has_rotation;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= parallel_min_items)
   for (long a = 0; a < n; ++a) {
     Vec3 f, t;
     double roll = 0.0;

@@ -6,6 +6,8 @@
 
 #include <omp.h>
 
+#include "model/parallel.h"
+
 namespace pastemix::model {
 
 CandidatePairs build_pairs(const std::vector<Vec3>& x, const std::vector<double>& radius, double skin) {
@@ -51,7 +53,7 @@ CandidatePairs build_pairs(const std::vector<Vec3>& x, const std::vector<double>
     for (std::size_t k = 0; k < n; ++k) sorted[fill[cell_id[k]]++] = static_cast<std::uint32_t>(k);
   }
 
-  const int nthreads = omp_get_max_threads();
+  const int nthreads = static_cast<long>(n) >= parallel_min_items ? omp_get_max_threads() : 1;
   std::vector<CandidatePairs> local(static_cast<std::size_t>(nthreads));
 #pragma omp parallel num_threads(nthreads)
   {

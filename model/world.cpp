@@ -29,6 +29,7 @@
 #include <fmt/format.h>
 
 #include "base/error.h"
+#include "model/parallel.h"
 
 namespace pastemix::model {
 
@@ -76,7 +77,7 @@ void World::kick(double h) {
   const Vec3 g = cfg_.gravity;
   const bool rot = p_.has_rotation;
   const bool roll = cfg_.rolling == RollingLaw::constant_torque;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= parallel_min_items)
   for (long a = 0; a < n; ++a) {
     p_.v[a] += (p_.f[a] * p_.inv_mass[a] + g) * h;
     if (rot) {
@@ -97,7 +98,7 @@ double World::drift() {
   double max_d2 = 0.0;
   long bad = std::numeric_limits<long>::max();
   const Vec3 lo = cfg_.domain_min, hi = cfg_.domain_max;
-#pragma omp parallel for schedule(static) reduction(max : max_d2) reduction(min : bad)
+#pragma omp parallel for schedule(static) reduction(max : max_d2) reduction(min : bad) if (n >= parallel_min_items)
   for (long a = 0; a < n; ++a) {
     p_.x[a] += p_.v[a] * dt;
     const Vec3& x = p_.x[a];

@@ -114,11 +114,12 @@ struct HertzMindlin {
     r.force_i += ft;
 
     if (p.rolling == RollingLaw::elastic_plastic) {
-      // Rolling spring on the relative rolling rotation (omega_i - omega_j, tangential part), limited by
-      // mu_r R* F_n; the dashpot acts only while the spring is below its limit (Ai et al. 2011).
+      // Rolling spring on the relative rotation omega_i - omega_j, limited by mu_r R* F_n; the dashpot acts
+      // only while the spring is below its limit (Ai et al. 2011). The whole relative rotation is used, the
+      // twist about n included (as LIGGGHTS epsd2 does): with the tangential part only, a sphere spinning
+      // about the vertical on a floor never stops and a pile never comes to rest (seen in the pile test).
       Vec3 m{history[3], history[4], history[5]};
-      m -= g.n * dot(m, g.n);
-      const Vec3 wr = g.w_rel - g.n * dot(g.w_rel, g.n);
+      const Vec3 wr = g.w_rel;
       const double kn = Sn;
       const double kr = 2.25 * kn * p.rolling_friction * p.rolling_friction * g.R_star * g.R_star;
       m -= wr * (kr * g.dt);
