@@ -124,6 +124,43 @@ void read_wall(const Params& w, const std::vector<Material>& mats, std::vector<W
   }
 }
 
+// Whether a wall surface enters `region` deeper than `margin` (m): samples the surface on a 96 x 96 grid;
+// a plane crosses when the region's bounding-box corners lie on both sides of it by more than margin.
+bool wall_crosses(const Wall& w, const FillRegion& region, double margin) {
+  constexpr int N = 96;
+  switch (w.kind) {
+    case WallKind::plane: {
+      Vec3 lo, hi, n;
+      region.bounds(&lo, &hi);
+      double dmin = inf, dmax = -inf;
+      for (int c = 0; c < 8; ++c) {
+        const Vec3 corner{c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z};
+        const double d = wall_distance(w, Vec3{}, corner, &n);
+        dmin = std::min(dmin, d);
+        dmax = std::max(dmax, d);
+      }
+      return dmin < -margin && dmax > margin;
+    }
+    case WallKind::rectangle:
+      for (int a = 0; a <= N; ++a)
+        for (int b = 0; b <= N; ++b) {
+          const Vec3 pt = w.origin + w.u * (2.0 * a / N - 1.0) + w.v * (2.0 * b / N - 1.0);
+          if (region.contains(pt, margin)) return true;
+        }
+      return false;
+    case WallKind::revolution:
+      for (int a = 0; a <= N; ++a)
+        for (int b = 0; b < N; ++b) {
+          const double t = static_cast<double>(a) / N, phi = 2.0 * M_PI * b / N;
+          const double r = w.r0 + t * (w.r1 - w.r0), z = w.z0 + t * (w.z1 - w.z0);
+          const Vec3 pt{w.origin.x + r * std::cos(phi), w.origin.y + r * std::sin(phi), w.origin.z + z};
+          if (region.contains(pt, margin)) return true;
+        }
+      return false;
+  }
+  return false;
+}
+
 std::vector<double> diameters_from(const Params& f, double density, std::uint64_t seed) {
   Psd psd;
   for (const Params& i : f.tables("psd"))
@@ -337,29 +374,19 @@ Scene parse_scene(std::string_view text, const std::string& display_path) {
       region.r_bottom = up ? cone->r0 : cone->r1;
       region.r_top = up ? cone->r1 : cone->r0;
     }
-    // A wall crossing the region (e.g. a plate across the fill box) is a scene error: sample the region
-    // on a 12^3 grid of cell centres; a wall closer than 0.45 cell to one of them passes through it.
-    {
-      Vec3 lo, hi;
-      region.bounds(&lo, &hi);
-      const int N = 12;
-      const Vec3 step{(hi.x - lo.x) / N, (hi.y - lo.y) / N, (hi.z - lo.z) / N};
-      const double tol = 0.45 * std::min({step.x, step.y, step.z});
-      for (const Wall& w : s.walls) {
-        if (w.name == container) continue;
-        for (int a = 0; a < N; ++a)
-          for (int b = 0; b < N; ++b)
-            for (int c = 0; c < N; ++c) {
-              const Vec3 pt{lo.x + (a + 0.5) * step.x, lo.y + (b + 0.5) * step.y, lo.z + (c + 0.5) * step.z};
-              if (!region.contains(pt, 0.0)) continue;
-              Vec3 n;
-              if (std::abs(wall_distance(w, Vec3{}, pt, &n)) < tol)
-                f.fail("shape", fmt::format("wall '{}' passes through the factory region", w.name));
-            }
-      }
-    }
+    // A wall crossing the region (e.g. a plate across the fill box) is a scene error. A wall surface point
+    // deeper inside the region than the smallest particle radius means the wall passes through it; walls
+    // on the region's boundary (a box filled up to its sides) do not count.
     std::vector<double> radii = diameters_from(f, s.materials[mat].density, seed);
     for (double& r : radii) r *= 0.5;
+    {
+      const double margin = *std::min_element(radii.begin(), radii.end());
+      for (const Wall& w : s.walls) {
+        if (w.name == container) continue;
+        if (wall_crosses(w, region, margin))
+          f.fail("shape", fmt::format("wall '{}' passes through the factory region", w.name));
+      }
+    }
     const Vec3 v = vec_or(f, "velocity", {});
     const FillResult fill =
         fill_region(region, radii, s.particles.x, s.particles.radius, s.walls, seed ^ 0x5eedf111ULL);
