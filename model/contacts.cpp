@@ -87,7 +87,8 @@ void wall_pass(const std::vector<typename Law::Params>& table, const StepContext
   const long n = static_cast<long>(p.size());
 #pragma omp parallel for schedule(static) if (n >= parallel_min_items)
   for (long a = 0; a < n; ++a) {
-    for (int k = 0; k < nw; ++k) {
+    for (std::uint32_t c = wc.start[a]; c < wc.start[a + 1]; ++c) {
+      const int k = wc.near[c];
       const std::size_t slot = static_cast<std::size_t>(a) * nw + k;
       double* hist = w ? &wc.history[slot * w] : nullptr;
       Vec3 n_to_wall;
@@ -130,6 +131,28 @@ void WallContacts::resize(std::size_t particles, int n_walls, int history_width)
   width = history_width;
   history.assign(particles * static_cast<std::size_t>(n_walls) * static_cast<std::size_t>(width), 0.0);
   touching.assign(particles * static_cast<std::size_t>(n_walls), 0);
+}
+
+void WallContacts::rebuild(const std::vector<Wall>& w, const Particles& p, double t, double skin) {
+  const std::size_t n = p.size();
+  start.assign(n + 1, 0);
+  near.clear();
+  std::vector<Vec3> shift(w.size());
+  for (std::size_t k = 0; k < w.size(); ++k) shift[k] = w[k].displacement(t);
+  for (std::size_t a = 0; a < n; ++a) {
+    for (std::size_t k = 0; k < w.size(); ++k) {
+      Vec3 nn;
+      const bool candidate = w[k].active(t) && wall_distance(w[k], shift[k], p.x[a], &nn) < p.radius[a] + skin;
+      const std::size_t slot = a * static_cast<std::size_t>(walls) + k;
+      if (candidate) {
+        near.push_back(static_cast<std::uint16_t>(k));
+      } else if (touching[slot]) {
+        touching[slot] = 0;
+        std::fill_n(&history[slot * static_cast<std::size_t>(width)], width, 0.0);
+      }
+    }
+    start[a + 1] = static_cast<std::uint32_t>(near.size());
+  }
 }
 
 void PairList::rebuild(const CandidatePairs& c, const Particles& p) {

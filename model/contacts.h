@@ -37,13 +37,19 @@ struct PairList {
   void rebuild(const CandidatePairs& c, const Particles& p);
 };
 
-// Per particle and wall: history slots and a touching flag.
+// Per particle and wall: history slots and a touching flag, plus a Verlet list of the walls within
+// radius + skin of each particle (most particles have none, so the wall pass costs nearly nothing).
 struct WallContacts {
   int width = 0;
   int walls = 0;
   std::vector<double> history;           // (particle * walls + wall) * width
   std::vector<std::uint8_t> touching;    // particle * walls + wall
+  std::vector<std::uint32_t> start;      // CSR: candidate walls of particle p are near[start[p] .. start[p+1])
+  std::vector<std::uint16_t> near;
   void resize(std::size_t particles, int n_walls, int history_width);
+  // Rebuilds the candidate lists at time t (walls at their positions then); clears the history of
+  // particle-wall slots that are no longer candidates.
+  void rebuild(const std::vector<Wall>& walls, const Particles& p, double t, double skin);
 };
 
 struct StepContext {

@@ -55,7 +55,9 @@ World::World(WorldConfig config, std::vector<Material> materials, LawTable laws,
 
 void World::rebuild_neighbors() {
   pairs_.rebuild(build_pairs(p_.x, p_.radius, cfg_.skin), p_);
+  wall_contacts_.rebuild(walls_, p_, t_, cfg_.skin);
   x_at_rebuild_ = p_.x;
+  t_at_rebuild_ = t_;
   ++profile_.rebuilds;
 }
 
@@ -82,7 +84,7 @@ void World::kick(double h) {
     p_.v[a] += (p_.f[a] * p_.inv_mass[a] + g) * h;
     if (rot) {
       Vec3 w = p_.omega[a] + p_.torque[a] * (h * p_.inv_inertia[a]);
-      if (roll) {
+      if (roll && p_.rolling_capacity[a] > 0.0) {
         const double stop = h * p_.rolling_capacity[a] * p_.inv_inertia[a];  // rad/s the friction can remove
         const double len = norm(w);
         w = len <= stop ? Vec3{} : w * (1.0 - stop / len);
@@ -129,7 +131,12 @@ void World::step() {
   t_ += cfg_.dt;
   ++steps_;
   if (bad_index_ >= 0) check();
-  if (max_d2 > 0.25 * cfg_.skin * cfg_.skin) {
+  // The lists stay valid while particle + wall motion since the build is below half the skin. A wall's
+  // motion is bounded by |v| (t - t_build); a removed wall needs no rebuild (it is skipped when inactive).
+  double wall_move = 0.0;
+  for (const Wall& wall : walls_)
+    wall_move = std::max(wall_move, norm(wall.displacement(t_) - wall.displacement(t_at_rebuild_)));
+  if (std::sqrt(max_d2) + wall_move > 0.5 * cfg_.skin) {
     StageTimer timer{profile_.seconds[Profile::neighbor]};
     rebuild_neighbors();
   }

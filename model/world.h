@@ -81,6 +81,7 @@ class World {
   std::vector<Vec3> x_at_rebuild_;
   Profile profile_;
   double t_ = 0.0;
+  double t_at_rebuild_ = 0.0;
   long steps_ = 0;
   bool started_ = false;
   // First problem found during a step (dense index, or -1) and its cause, reported by check().
