@@ -54,7 +54,13 @@ World::World(WorldConfig config, std::vector<Material> materials, LawTable laws,
 }
 
 void World::rebuild_neighbors() {
-  pairs_.rebuild(build_pairs(p_.x, p_.radius, cfg_.skin), p_);
+  CandidatePairs c = build_pairs(p_.x, p_.radius, cfg_.skin);
+#ifdef PASTEMIX_VALIDATE
+  // Expensive check: the cell list must find exactly the brute-force pairs.
+  if (brute_force_pairs(p_.x, p_.radius, cfg_.skin).i.size() != c.i.size())
+    throw RuntimeFailure(fmt::format("neighbour list at t = {} s disagrees with brute force", t_));
+#endif
+  pairs_.rebuild(c, p_);
   wall_contacts_.rebuild(walls_, p_, t_, cfg_.skin);
   x_at_rebuild_ = p_.x;
   t_at_rebuild_ = t_;

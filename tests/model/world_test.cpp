@@ -9,6 +9,8 @@
 
 #include <cmath>
 #include <cstring>
+#include <fstream>
+#include <sstream>
 
 #include "base/csv.h"
 #include "base/error.h"
@@ -239,4 +241,28 @@ TEST_CASE("diagnostics: a particle leaving the domain and a blow-up stop the run
   MESSAGE("blow-up diagnosis: " << msg);
   CHECK(msg.find("particle id") != std::string::npos);
   CHECK((msg.find("blow-up") != std::string::npos || msg.find("left the domain") != std::string::npos));
+}
+
+TEST_CASE("funnel: filled by the factory, plate removed, lifted at 0.01 m/s; rock flows through the exit") {
+  std::ifstream in(pastemix::test::source_path("datasets/scenes/funnel_lift.toml"));
+  std::stringstream buf;
+  buf << in.rdbuf();
+  const Scene s = model::test::scene_from(buf.str(), "funnel_lift.toml");
+  REQUIRE(s.particles.size() > 100);
+  // Every sphere starts inside the cone (radius at its height minus its own radius).
+  for (std::size_t a = 0; a < s.particles.size(); ++a) {
+    const Vec3& x = s.particles.x[a];
+    const double r_wall = 0.02 + (0.095 - 0.02) * (x.z - 0.022) / 0.12;
+    CHECK(std::hypot(x.x, x.y) + s.particles.radius[a] <= r_wall + 1e-12);
+  }
+  World w = make_world(s);
+  while (w.time() < 0.12) w.step();
+  w.check();
+  long below_exit = 0;
+  for (const Vec3& x : w.particles().x) below_exit += x.z < 0.022;
+  const Wall& funnel = w.walls()[1];
+  MESSAGE("funnel after 0.12 s: " << below_exit << " of " << w.particles().size()
+                                  << " spheres below the cone exit; funnel lifted " << funnel.displacement(0.12).z << " m");
+  CHECK(funnel.displacement(0.12).z == doctest::Approx(0.001));
+  CHECK(below_exit > 5);
 }
