@@ -54,6 +54,9 @@ RunOutput::RunOutput(const std::filesystem::path& h5_path, std::string h5_final_
   h5_->attribute("/", "time_step_s", scene.config.dt);
   h5_->attribute("/", "end_time_s", scene.end_time);
   h5_->attribute("/", "particle_count", static_cast<std::int64_t>(scene.particles.size()));
+  std::vector<std::string> names;
+  for (const auto& m : scene.materials) names.push_back(m.name);
+  h5_->write_strings("/materials", names);
 }
 
 RunOutput::~RunOutput() = default;

@@ -4,6 +4,7 @@
 //   /                         attributes: scene_path, scene_text (the resolved scene file), scene_hash
 //                             (FNV-1a 64 of the text, hex), seed, law, rolling, time_step_s, end_time_s,
 //                             particle_count
+//   /materials                (M strings) material names; snapshots' `material` indexes this list
 //   /snapshots/time           (S) s
 //   /snapshots/NNNNNN/        one group per snapshot (attribute time_s):
 //       position (N x 3, m), velocity (N x 3, m/s), radius (N, m), id (N, int64), material (N, int32),

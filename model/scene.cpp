@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 
 #include "base/error.h"
+#include "base/h5.h"
 #include "base/params.h"
 #include "base/psd.h"
 #include "model/insert/fill.h"
@@ -121,6 +122,66 @@ void read_wall(const Params& w, const std::vector<Material>& mats, std::vector<W
     if (rt <= re) w.fail("top_diameter", "the top diameter must exceed the exit diameter");
     out.push_back(revolution(b, c[0], c[1], re, ze, rt, ze + h));
     if (tube > 0.0) out.push_back(revolution(b, c[0], c[1], re, ze - tube, re, ze));
+  }
+}
+
+// [initial_state]: file (relative to the scene), snapshot (index, -1 = last). The snapshot's materials are
+// matched by name (the output stores /materials).
+std::filesystem::path initial_file(const Params& t, const std::string& scene_path) {
+  std::filesystem::path f = t.string("file");
+  if (f.is_relative()) f = std::filesystem::path(scene_path).parent_path() / f;
+  if (!std::filesystem::exists(f)) t.fail("file", fmt::format("no such file: {}", f.string()));
+  return f;
+}
+
+std::string initial_group(const Params& t, const H5Reader& h5) {
+  const auto times = h5.read_doubles("/snapshots/time");
+  const long n = static_cast<long>(times.size());
+  long k = t.integer_or("snapshot", -1);
+  if (k < 0) k += n;
+  if (k < 0 || k >= n) t.fail("snapshot", fmt::format("the file has {} snapshots", n));
+  return fmt::format("/snapshots/{:06d}", k);
+}
+
+std::vector<int> initial_state_materials(const Params& t, const std::string& scene_path,
+                                         const std::vector<Material>& mats) {
+  H5Reader h5(initial_file(t, scene_path));
+  if (!h5.exists("/materials")) t.fail("file", "the file has no /materials (not a pastemix run output?)");
+  std::vector<int> map;
+  for (const std::string& name : h5.read_strings("/materials")) {
+    int idx = -1;
+    for (std::size_t k = 0; k < mats.size(); ++k)
+      if (mats[k].name == name) idx = static_cast<int>(k);
+    map.push_back(idx);
+  }
+  const auto g = initial_group(t, h5);
+  std::set<int> used;
+  for (auto m : h5.read_ints(g + "/material")) {
+    if (m < 0 || m >= static_cast<long>(map.size()) || map[static_cast<std::size_t>(m)] < 0)
+      t.fail("file", "the snapshot uses a material this scene does not define");
+    used.insert(map[static_cast<std::size_t>(m)]);
+  }
+  t.integer_or("snapshot", -1);
+  return {used.begin(), used.end()};
+}
+
+void read_initial_state(const Params& t, const std::string& scene_path, Scene& s) {
+  H5Reader h5(initial_file(t, scene_path));
+  std::vector<int> map;
+  for (const std::string& name : h5.read_strings("/materials"))
+    for (std::size_t k = 0; k < s.materials.size(); ++k)
+      if (s.materials[k].name == name) map.push_back(static_cast<int>(k));
+  const auto g = initial_group(t, h5);
+  const auto x = h5.read_doubles(g + "/position"), v = h5.read_doubles(g + "/velocity");
+  const auto r = h5.read_doubles(g + "/radius");
+  const auto m = h5.read_ints(g + "/material");
+  const bool has_w = h5.exists(g + "/angular_velocity");
+  const auto w = has_w ? h5.read_doubles(g + "/angular_velocity") : std::vector<double>{};
+  for (std::size_t a = 0; a < r.size(); ++a) {
+    const int mat = map[static_cast<std::size_t>(m[a])];
+    const Vec3 om = has_w && s.plan.rotation ? Vec3{w[3 * a], w[3 * a + 1], w[3 * a + 2]} : Vec3{};
+    s.particles.add(mat, r[a], s.materials[static_cast<std::size_t>(mat)].density,
+                    {x[3 * a], x[3 * a + 1], x[3 * a + 2]}, {v[3 * a], v[3 * a + 1], v[3 * a + 2]}, om);
   }
 }
 
@@ -262,6 +323,11 @@ Scene parse_scene(std::string_view text, const std::string& display_path) {
     read_wall(w, s.materials, s.walls);
   }
 
+  // An initial state (e.g. a settled bed from an earlier run) brings its own particle materials.
+  const auto initial = root.optional_table("initial_state");
+  std::vector<int> initial_mats;
+  if (initial) initial_mats = initial_state_materials(*initial, display_path, s.materials);
+
   // Which material pairs can touch: particle-particle among particle materials, particle-wall.
   std::set<int> particle_mats;
   std::vector<std::pair<const Params*, int>> needs;  // (where, material) for error lines
@@ -271,8 +337,9 @@ Scene parse_scene(std::string_view text, const std::string& display_path) {
   for (const Params& p : particle_tables) particle_mat_of.push_back(material_index(p, "material", s.materials));
   for (const Params& f : factory_tables) factory_mat_of.push_back(material_index(f, "material", s.materials));
   for (int m : particle_mat_of) particle_mats.insert(m);
+  for (int m : initial_mats) particle_mats.insert(m);
   for (int m : factory_mat_of) particle_mats.insert(m);
-  if (particle_mats.empty()) root.fail("particle", "the scene has no [[particle]] and no [[factory]]");
+  if (particle_mats.empty()) root.fail("particle", "the scene has no [[particle]], [[factory]] or [initial_state]");
   auto require_pair = [&](int a, int b, const std::string& what) {
     if (!s.pairs[static_cast<std::size_t>(a) * nm + b].a)
       throw InputError(display_path, material_line[static_cast<std::size_t>(a)], "interaction",
@@ -309,9 +376,13 @@ Scene parse_scene(std::string_view text, const std::string& display_path) {
     s.laws = std::move(table);
   }
 
-  // Particles: explicit ones, then factories.
+  // Particles: an initial state from an earlier run, explicit ones, then factories.
   if (s.plan.rotation) s.particles.enable_rotation();
   double r_min = inf;
+  if (initial) {
+    read_initial_state(*initial, display_path, s);
+    for (double r : s.particles.radius) r_min = std::min(r_min, r);
+  }
   for (std::size_t k = 0; k < particle_tables.size(); ++k) {
     const Params& p = particle_tables[k];
     const double r = p.number("radius", Range::positive);

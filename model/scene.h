@@ -25,6 +25,9 @@
 //   [[interaction]]                # one per pair of materials that can touch (walls included)
 //   materials = "rock/rock"        # "a/b", order-free
 //   restitution = 0.79  friction = 0.466  rolling_friction = 0.15
+//   [initial_state]                # optional: start from a snapshot of an earlier run (a settled bed)
+//   file = "settled.h5"            # relative to this scene file
+//   snapshot = -1                  # index, -1 = last; materials are matched by name
 //   [[particle]]                   # explicit spheres
 //   material = "rock"  radius = 0.01  position = [0, 0, 0.1]
 //   velocity = [0, 0, 0]  angular_velocity = [0, 0, 0]     # optional

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "base/h5.h"
+#include "model/scene.h"
 #include "tests/run_command.h"
 
 using namespace pastemix;
@@ -66,4 +67,14 @@ TEST_CASE("output: pastemix run writes HDF5 + XDMF that agree, with scene, seed 
     ++checked;
   }
   CHECK(checked == 3 * 5);  // 3 snapshots x (position, radius, id, velocity, angular_velocity)
+
+  // [initial_state]: a scene starting from the last snapshot (how a settled bed is reused) gets exactly
+  // those spheres.
+  std::string again = text.substr(0, text.find("\n[[factory]]") + 1);
+  again += "[initial_state]\nfile = \"pour.h5\"\n";
+  const model::Scene s = model::parse_scene(again, dir + "/again.toml");
+  const auto x = h5.read_doubles("/snapshots/000002/position");
+  REQUIRE(s.particles.size() * 3 == x.size());
+  CHECK(s.particles.x.back().z == x.back());
+  CHECK(s.particles.v.size() == s.particles.size());
 }
