@@ -465,7 +465,33 @@ Scene parse_scene(std::string_view text, const std::string& display_path) {
       f.fail("mass", fmt::format("the region holds only {} of the {} spheres without overlap: enlarge it or "
                                  "reduce the mass",
                                  fill.placed, radii.size()));
-    for (std::size_t q = 0; q < radii.size(); ++q) {
+    // Ids follow a Morton (Z-order) curve through the region: spatial neighbours are neighbours in
+    // memory, which keeps the contact loops cache-friendly (a pour keeps much of that order as it falls).
+    std::vector<std::pair<std::uint64_t, std::size_t>> order;
+    {
+      Vec3 lo, hi;
+      region.bounds(&lo, &hi);
+      auto spread = [](std::uint64_t a) {  // 21 bits -> every third bit
+        a &= 0x1fffff;
+        a = (a | a << 32) & 0x1f00000000ffffULL;
+        a = (a | a << 16) & 0x1f0000ff0000ffULL;
+        a = (a | a << 8) & 0x100f00f00f00f00fULL;
+        a = (a | a << 4) & 0x10c30c30c30c30c3ULL;
+        a = (a | a << 2) & 0x1249249249249249ULL;
+        return a;
+      };
+      auto cell = [](double x, double a, double b) {
+        return static_cast<std::uint64_t>(std::clamp((x - a) / (b - a), 0.0, 1.0) * 2097151.0);
+      };
+      for (std::size_t q = 0; q < radii.size(); ++q) {
+        const Vec3& x = fill.positions[q];
+        order.emplace_back(spread(cell(x.x, lo.x, hi.x)) | spread(cell(x.y, lo.y, hi.y)) << 1 |
+                               spread(cell(x.z, lo.z, hi.z)) << 2,
+                           q);
+      }
+      std::sort(order.begin(), order.end());
+    }
+    for (const auto& [code, q] : order) {
       s.particles.add(mat, radii[q], s.materials[mat].density, fill.positions[q], v, {});
       r_min = std::min(r_min, radii[q]);
     }

@@ -62,7 +62,10 @@ TEST_CASE("output: pastemix run writes HDF5 + XDMF that agree, with scene, seed 
     CHECK(file == "pour.h5");
     REQUIRE(h5.exists(path));
     std::string actual;
-    for (auto d : h5.dims(path)) actual += (actual.empty() ? "" : " ") + std::to_string(d);
+    for (auto d : h5.dims(path)) {
+      if (!actual.empty()) actual.push_back(' ');
+      actual.append(std::to_string(d));
+    }
     CHECK(actual == dims);
     ++checked;
   }
