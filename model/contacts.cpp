@@ -30,14 +30,11 @@ void pair_pass(const std::vector<typename Law::Params>& table, const StepContext
     const double dist2 = norm2(d);
     double* hist = w ? &L.history[static_cast<std::size_t>(k) * w] : nullptr;
     if (dist2 >= rsum * rsum) {
-      // Not touching: forget the springs (a new contact starts from zero displacement).
-      if (L.touching[k]) std::fill(hist, hist + w, 0.0);
-      L.touching[k] = 0;
-      L.force_i[k] = {};
-      if (rot) {
-        L.torque_i[k] = {};
-        L.torque_j[k] = {};
-        L.roll_i[k] = L.roll_j[k] = 0.0;
+      // Not touching: forget the springs (a new contact starts from zero displacement). The force slots
+      // are left stale: the gather skips pairs that are not touching.
+      if (L.touching[k]) {
+        std::fill(hist, hist + w, 0.0);
+        L.touching[k] = 0;
       }
       continue;
     }
@@ -58,13 +55,14 @@ void pair_pass(const std::vector<typename Law::Params>& table, const StepContext
     g.dt = ctx.dt;
     const auto& prm = table[static_cast<std::size_t>(p.material[a] * ctx.n_materials + p.material[b])];
     const auto r = Law::force(prm, g, hist, w);
-    L.force_i[k] = r.force_i;
+    PairList::Out& o = L.out[k];
+    o.force_i = r.force_i;
     if (rot) {
-      L.torque_i[k] = cross(g.n * arm_a, r.tangential_i) + r.rolling_torque_i;
-      L.torque_j[k] = cross(g.n * arm_b, r.tangential_i) - r.rolling_torque_i;
+      o.torque_i = cross(g.n * arm_a, r.tangential_i) + r.rolling_torque_i;
+      o.torque_j = cross(g.n * arm_b, r.tangential_i) - r.rolling_torque_i;
       if (constant_roll) {
-        L.roll_i[k] = prm.rolling_friction * r.normal_force * arm_a;
-        L.roll_j[k] = prm.rolling_friction * r.normal_force * arm_b;
+        o.roll_i = prm.rolling_friction * r.normal_force * arm_a;
+        o.roll_j = prm.rolling_friction * r.normal_force * arm_b;
       }
     }
   }
@@ -184,13 +182,7 @@ void PairList::rebuild(const CandidatePairs& c, const Particles& p) {
   key = std::move(new_key);
   history = std::move(new_hist);
   touching = std::move(new_touch);
-  force_i.assign(n, Vec3{});
-  if (p.has_rotation) {
-    torque_i.assign(n, Vec3{});
-    torque_j.assign(n, Vec3{});
-    roll_i.assign(n, 0.0);
-    roll_j.assign(n, 0.0);
-  }
+  out.assign(n, Out{});
   // CSR per particle, entries in ascending pair order.
   const std::size_t np = p.size();
   start.assign(np + 1, 0);
@@ -238,16 +230,18 @@ void gather_pair_forces(const PairList& L, Particles& p) {
       const std::uint32_t k = L.entry[e] >> 1;
       if (!L.touching[k]) continue;
       if ((L.entry[e] & 1u) == 0) {
-        f += L.force_i[k];
+        const PairList::Out& o = L.out[k];
+        f += o.force_i;
         if (rot) {
-          t += L.torque_i[k];
-          roll += L.roll_i[k];
+          t += o.torque_i;
+          roll += o.roll_i;
         }
       } else {
-        f -= L.force_i[k];
+        const PairList::Out& o = L.out[k];
+        f -= o.force_i;
         if (rot) {
-          t += L.torque_j[k];
-          roll += L.roll_j[k];
+          t += o.torque_j;
+          roll += o.roll_j;
         }
       }
     }

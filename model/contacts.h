@@ -25,9 +25,14 @@ struct PairList {
   std::vector<std::uint32_t> i, j;     // dense indices
   std::vector<std::uint64_t> key;      // (min id << 32) | max id
   std::vector<double> history;         // width per pair
-  std::vector<Vec3> force_i;           // N, on i (j gets minus)
-  std::vector<Vec3> torque_i, torque_j;  // N.m (rotation only)
-  std::vector<double> roll_i, roll_j;  // N.m, constant-torque rolling capacity (rotation only)
+  // What a touching pair contributes, packed together so the gather reads one or two cache lines per
+  // pair (stale for pairs not touching: the gather skips them).
+  struct Out {
+    Vec3 force_i;            // N, on i (j gets minus)
+    Vec3 torque_i, torque_j; // N.m (rotation only)
+    double roll_i, roll_j;   // N.m, constant-torque rolling capacity (rotation only)
+  };
+  std::vector<Out> out;
   std::vector<std::uint8_t> touching;
   // CSR: for particle p, entries [start[p], start[p+1]) of `entry` = pair * 2 + (0 if p is i, 1 if j).
   std::vector<std::uint32_t> start, entry;

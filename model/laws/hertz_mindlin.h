@@ -27,6 +27,7 @@ struct HertzMindlin {
     double E_star = 0.0;         // Pa, effective Young's modulus
     double G_star = 0.0;         // Pa, effective shear modulus
     double damping = 0.0;        // -, -2 sqrt(5/6) beta >= 0 (0 when e = 1)
+    double sqrt_st_over_sn = 0.0;  // -, sqrt(S_t / S_n) = sqrt(4 G* / E*): saves a sqrt per contact
     double friction = 0.0;       // -, mu_s
     double rolling_friction = 0.0;  // -, mu_r
     double rolling_damping = 0.0;   // -, eta_r of the elastic-plastic law (critical-damping ratio)
@@ -51,6 +52,7 @@ struct HertzMindlin {
     const double le = std::log(p.restitution);
     const double beta = le / std::sqrt(le * le + M_PI * M_PI);
     q.damping = -2.0 * std::sqrt(5.0 / 6.0) * beta;
+    q.sqrt_st_over_sn = std::sqrt(4.0 * q.G_star / q.E_star);
     q.friction = p.friction;
     q.rolling_friction = p.rolling_friction;
     q.rolling = rolling;
@@ -84,7 +86,8 @@ struct HertzMindlin {
     const double Sn = 2.0 * p.E_star * sqrt_Rd;
     const double fn_elastic = (2.0 / 3.0) * Sn * g.overlap;  // = 4/3 E* sqrt(R*) delta^1.5
     const double vn = dot(g.v_rel, g.n);                     // < 0 while approaching
-    const double fn = fn_elastic - p.damping * std::sqrt(Sn * g.m_star) * vn;  // repulsive > 0
+    const double sqrt_sn_m = std::sqrt(Sn * g.m_star);
+    const double fn = fn_elastic - p.damping * sqrt_sn_m * vn;  // repulsive > 0
     r.normal_force = std::max(fn, 0.0);
     r.force_i = g.n * (-fn);
     if (width == 0) return r;
@@ -99,7 +102,7 @@ struct HertzMindlin {
     const Vec3 vt = g.v_rel - g.n * vn;
     xi += vt * g.dt;
     const double St = 8.0 * p.G_star * sqrt_Rd;
-    Vec3 ft = xi * St + vt * (p.damping * std::sqrt(St * g.m_star));  // on i: drags i along with j
+    Vec3 ft = xi * St + vt * (p.damping * sqrt_sn_m * p.sqrt_st_over_sn);  // on i: drags i along with j
     const double ft_len = norm(ft);
     const double ft_max = p.friction * r.normal_force;
     if (ft_len > ft_max) {
