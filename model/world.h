@@ -68,8 +68,9 @@ class World {
  private:
   void compute_forces();
   void rebuild_neighbors();
+  void kick_one(long a, double h, bool rot, bool roll);
   void kick(double h);
-  double drift();  // returns max squared displacement since the last rebuild
+  double kick_drift(double h);  // returns max squared displacement since the last rebuild
 
   WorldConfig cfg_;
   std::vector<Material> materials_;
