@@ -3,6 +3,8 @@
 // prints the per-stage profile.
 #include <omp.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <memory>
 
@@ -30,6 +32,19 @@ void register_model_commands(CLI::App& app) {
   run->callback([opts] {
     if (opts->threads > 0) omp_set_num_threads(opts->threads);
     const model::Scene scene = model::load_scene(opts->scene);
+    // The time step against the Rayleigh time of the smallest sphere (DESIGN.md section 3): informative,
+    // the right step is found by a convergence study, not by habit.
+    {
+      double tr = 1e300;
+      const auto& p = scene.particles;
+      for (std::size_t a = 0; a < p.size(); ++a) {
+        const auto& m = scene.materials[static_cast<std::size_t>(p.material[a])];
+        tr = std::min(tr, M_PI * p.radius[a] * std::sqrt(m.density / m.shear_modulus()) /
+                              (0.8766 + 0.163 * m.poisson_ratio));
+      }
+      fmt::print(stderr, "time step {:.3g} s = {:.1f} % of the Rayleigh time of the smallest sphere ({:.3g} s)\n",
+                 scene.config.dt, 100.0 * scene.config.dt / tr, tr);
+    }
     model::RunOptions ro;
     ro.progress = !opts->quiet;
     const model::RunSummary r = model::run_scene(scene, opts->out, ro);

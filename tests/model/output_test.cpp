@@ -81,3 +81,23 @@ TEST_CASE("output: pastemix run writes HDF5 + XDMF that agree, with scene, seed 
   CHECK(s.particles.x.back().z == x.back());
   CHECK(s.particles.v.size() == s.particles.size());
 }
+
+TEST_CASE("output: a run that fails (particle leaves the domain) exits 3 naming the particle, and writes nothing") {
+  const std::string dir = "model_output_fail_out";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  {
+    std::ofstream f(dir + "/fall.toml");
+    f << "time_step = 1e-4\nend_time = 1.0\n[domain]\nmin = [-1, -1, -0.1]\nmax = [1, 1, 1]\n"
+         "[contact]\nlaw = \"hertz_mindlin\"\n"
+         "[[material]]\nname = \"rock\"\ndensity = 2760\nyoungs_modulus = 4.68e7\npoisson_ratio = 0.19\n"
+         "[[interaction]]\nmaterials = \"rock/rock\"\nrestitution = 0.5\n"
+         "[[particle]]\nmaterial = \"rock\"\nradius = 0.005\nposition = [0, 0, 0]\n";
+  }
+  const auto r = pastemix::test::run_pastemix("run " + dir + "/fall.toml --out " + dir + " --quiet");
+  CHECK(r.exit_code == 3);
+  CHECK(r.output.find("particle id 0 at t = ") != std::string::npos);
+  CHECK(r.output.find("left the domain") != std::string::npos);
+  CHECK_FALSE(std::filesystem::exists(dir + "/fall.h5"));
+  CHECK_FALSE(std::filesystem::exists(dir + "/fall.xmf"));
+}
