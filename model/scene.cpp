@@ -16,6 +16,7 @@
 #include "base/params.h"
 #include "base/psd.h"
 #include "model/insert/fill.h"
+#include "model/neighbor.h"
 
 namespace pastemix::model {
 
@@ -394,9 +395,6 @@ Scene parse_scene(std::string_view text, const std::string& display_path) {
     const Vec3 &lo = s.config.domain_min, &hi = s.config.domain_max;
     if (!(x.x >= lo.x && x.x <= hi.x && x.y >= lo.y && x.y <= hi.y && x.z >= lo.z && x.z <= hi.z))
       p.fail("position", "the particle is outside the [domain] box");
-    for (std::size_t q = 0; q < s.particles.size(); ++q)
-      if (norm(s.particles.x[q] - x) < r + s.particles.radius[q])
-        p.fail("position", fmt::format("the particle overlaps particle {} (defined earlier)", q));
     for (const Wall& wall : s.walls) {
       Vec3 n;
       if (wall_distance(wall, Vec3{}, x, &n) < r)
@@ -404,6 +402,19 @@ Scene parse_scene(std::string_view text, const std::string& display_path) {
     }
     s.particles.add(particle_mat_of[k], r, s.materials[particle_mat_of[k]].density, x, v, w);
     r_min = std::min(r_min, r);
+  }
+  // Overlaps among the spheres so far (initial state + explicit), found with the cell list (a scene may
+  // list ~10^4 spheres): reported at the later sphere's table.
+  {
+    const std::size_t first_explicit = s.particles.size() - particle_tables.size();
+    const CandidatePairs c = build_pairs(s.particles.x, s.particles.radius, 0.0);
+    for (std::size_t k = 0; k < c.i.size(); ++k) {
+      const std::size_t a = c.i[k], b = c.j[k];  // a < b
+      if (b < first_explicit) continue;        // two spheres of an earlier run's snapshot: its business
+      particle_tables[b - first_explicit].fail(
+          "position", fmt::format("the particle overlaps particle {} ({} m deep)", a,
+                                  s.particles.radius[a] + s.particles.radius[b] - norm(s.particles.x[b] - s.particles.x[a])));
+    }
   }
   for (std::size_t k = 0; k < factory_tables.size(); ++k) {
     const Params& f = factory_tables[k];

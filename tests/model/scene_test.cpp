@@ -87,6 +87,9 @@ TEST_CASE("scene: bad scenes fail with file:line and the field") {
       "[[wall]]\nname = \"floor\"\ntype = \"plane\"\nmaterial = \"rock\"\npoint = [0, 0, 0]\nnormal = [0, 0, 1]\n";
   CHECK(error_of(kBase + floor + "[[particle]]\nmaterial = \"rock\"\nradius = 0.01\nposition = [0, 0, 0.005]\n")
             .find("bad.toml:26: key 'position': the particle overlaps wall 'floor'") != std::string::npos);
+  // Two overlapping spheres: reported at the second one's position (line 24).
+  CHECK(error_of(kBase + sphere + "[[particle]]\nmaterial = \"rock\"\nradius = 0.01\nposition = [0.015, 0, 0]\n")
+            .find("bad.toml:24: key 'position': the particle overlaps particle 0") != std::string::npos);
   // A plate across a factory's fill region.
   const std::string plate =
       "[[wall]]\nname = \"plate\"\ntype = \"disk\"\nmaterial = \"rock\"\ncenter = [0, 0, 0.05]\nradius = 0.2\n";
