@@ -10,6 +10,15 @@
 
 namespace pastemix::model {
 
+namespace {
+
+// Own cell first, then the 13 neighbour cells "after" it in (z, y, x) order.
+constexpr long kStencil[14][3] = {{0, 0, 0},   {1, 0, 0},   {-1, 1, 0}, {0, 1, 0},  {1, 1, 0},
+                                  {-1, -1, 1}, {0, -1, 1},  {1, -1, 1}, {-1, 0, 1}, {0, 0, 1},
+                                  {1, 0, 1},   {-1, 1, 1},  {0, 1, 1},  {1, 1, 1}};
+
+}  // namespace
+
 CandidatePairs build_pairs(const std::vector<Vec3>& x, const std::vector<double>& radius, double skin) {
   CandidatePairs out;
   const std::size_t n = x.size();
@@ -63,25 +72,19 @@ CandidatePairs build_pairs(const std::vector<Vec3>& x, const std::vector<double>
       long c[3];
       cell_of(x[a], c);
       const double ra = radius[a] + skin;
-      for (long dz = -1; dz <= 1; ++dz) {
-        const long cz = c[2] + dz;
-        if (cz < 0 || cz >= dim[2]) continue;
-        for (long dy = -1; dy <= 1; ++dy) {
-          const long cy = c[1] + dy;
-          if (cy < 0 || cy >= dim[1]) continue;
-          for (long dx = -1; dx <= 1; ++dx) {
-            const long cx = c[0] + dx;
-            if (cx < 0 || cx >= dim[0]) continue;
-            const std::size_t cc = static_cast<std::size_t>((cz * dim[1] + cy) * dim[0] + cx);
-            for (std::uint32_t s = start[cc]; s < start[cc + 1]; ++s) {
-              const std::uint32_t b = sorted[s];
-              if (b <= a) continue;
-              const double cut = ra + radius[b];
-              if (norm2(x[b] - x[a]) < cut * cut) {
-                mine.i.push_back(static_cast<std::uint32_t>(a));
-                mine.j.push_back(b);
-              }
-            }
+      // Half stencil: the own cell (partners of higher index) and the 13 "forward" neighbour cells (all
+      // partners); each pair is found once. Pairs are stored as (lower index, higher index).
+      for (int o = 0; o < 14; ++o) {
+        const long cx = c[0] + kStencil[o][0], cy = c[1] + kStencil[o][1], cz = c[2] + kStencil[o][2];
+        if (cx < 0 || cx >= dim[0] || cy < 0 || cy >= dim[1] || cz < 0 || cz >= dim[2]) continue;
+        const std::size_t cc = static_cast<std::size_t>((cz * dim[1] + cy) * dim[0] + cx);
+        for (std::uint32_t s = start[cc]; s < start[cc + 1]; ++s) {
+          const std::uint32_t b = sorted[s];
+          if (o == 0 && b <= a) continue;
+          const double cut = ra + radius[b];
+          if (norm2(x[b] - x[a]) < cut * cut) {
+            mine.i.push_back(static_cast<std::uint32_t>(std::min<std::size_t>(a, b)));
+            mine.j.push_back(static_cast<std::uint32_t>(std::max<std::size_t>(a, b)));
           }
         }
       }

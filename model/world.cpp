@@ -50,6 +50,10 @@ World::World(WorldConfig config, std::vector<Material> materials, LawTable laws,
     : cfg_(config), materials_(std::move(materials)), laws_(std::move(laws)), p_(std::move(particles)),
       walls_(std::move(walls)) {
   pairs_.width = history_width;
+  // Wall lists: a skin of at least one largest diameter, so they are rebuilt far less often than pairs.
+  double r_max = 0.0;
+  for (double r : p_.radius) r_max = std::max(r_max, r);
+  wall_skin_ = std::max(cfg_.skin, 2.0 * r_max);
   wall_contacts_.resize(p_.size(), static_cast<int>(walls_.size()), history_width);
 }
 
@@ -61,10 +65,14 @@ void World::rebuild_neighbors() {
     throw RuntimeFailure(fmt::format("neighbour list at t = {} s disagrees with brute force", t_));
 #endif
   pairs_.rebuild(c, p_);
-  wall_contacts_.rebuild(walls_, p_, t_, cfg_.skin);
   x_at_rebuild_ = p_.x;
-  t_at_rebuild_ = t_;
   ++profile_.rebuilds;
+}
+
+void World::rebuild_wall_lists() {
+  wall_contacts_.rebuild(walls_, p_, t_, wall_skin_);
+  x_at_wall_rebuild_ = p_.x;
+  t_at_wall_rebuild_ = t_;
 }
 
 void World::compute_forces() {
@@ -103,15 +111,15 @@ void World::kick(double h) {
 }
 
 // First half kick and drift in one loop (one fork/join less per step).
-double World::kick_drift(double h) {
+World::Displacements World::kick_drift(double h) {
   const long n = static_cast<long>(p_.size());
   const bool rot = p_.has_rotation;
   const bool roll = cfg_.rolling == RollingLaw::constant_torque;
   const double dt = cfg_.dt;
-  double max_d2 = 0.0;
+  double max_d2 = 0.0, max_w2 = 0.0;
   long bad = std::numeric_limits<long>::max();
   const Vec3 lo = cfg_.domain_min, hi = cfg_.domain_max;
-#pragma omp parallel for schedule(static) reduction(max : max_d2) reduction(min : bad) if (n >= parallel_min_items)
+#pragma omp parallel for schedule(static) reduction(max : max_d2, max_w2) reduction(min : bad) if (n >= parallel_min_items)
   for (long a = 0; a < n; ++a) {
     kick_one(a, h, rot, roll);
     p_.x[a] += p_.v[a] * dt;
@@ -119,37 +127,45 @@ double World::kick_drift(double h) {
     // NaN fails every comparison, so "not inside" also catches it.
     if (!(x.x >= lo.x && x.x <= hi.x && x.y >= lo.y && x.y <= hi.y && x.z >= lo.z && x.z <= hi.z)) bad = std::min(bad, a);
     max_d2 = std::max(max_d2, norm2(x - x_at_rebuild_[a]));
+    max_w2 = std::max(max_w2, norm2(x - x_at_wall_rebuild_[a]));
   }
   if (bad != std::numeric_limits<long>::max() && bad_index_ < 0) bad_index_ = bad;
-  return max_d2;
+  return {max_d2, max_w2};
 }
 
 void World::step() {
   if (!started_) {
     StageTimer timer{profile_.seconds[Profile::neighbor]};
     rebuild_neighbors();
+    rebuild_wall_lists();
   }
   if (!started_) {
     compute_forces();
     started_ = true;
   }
   const double h = 0.5 * cfg_.dt;
-  double max_d2;
+  Displacements moved;
   {
     StageTimer timer{profile_.seconds[Profile::integration]};
-    max_d2 = kick_drift(h);
+    moved = kick_drift(h);
   }
   t_ += cfg_.dt;
   ++steps_;
   if (bad_index_ >= 0) check();
-  // The lists stay valid while particle + wall motion since the build is below half the skin. A wall's
-  // motion is bounded by |v| (t - t_build); a removed wall needs no rebuild (it is skipped when inactive).
-  double wall_move = 0.0;
-  for (const Wall& wall : walls_)
-    wall_move = std::max(wall_move, norm(wall.displacement(t_) - wall.displacement(t_at_rebuild_)));
-  if (std::sqrt(max_d2) + wall_move > 0.5 * cfg_.skin) {
+  // The pair list stays valid while no particle has moved more than skin/2 since its build. The wall
+  // candidate lists use their own, larger skin (walls are few; rebuilding them costs a distance per
+  // particle and wall) and stay valid while particle + wall motion since their build is below half of
+  // it; a wall's motion is |v| (t - t_build); a removed wall needs no rebuild (it is skipped when inactive).
+  if (moved.pairs2 > 0.25 * cfg_.skin * cfg_.skin) {
     StageTimer timer{profile_.seconds[Profile::neighbor]};
     rebuild_neighbors();
+  }
+  double wall_move = 0.0;
+  for (const Wall& wall : walls_)
+    wall_move = std::max(wall_move, norm(wall.displacement(t_) - wall.displacement(t_at_wall_rebuild_)));
+  if (std::sqrt(moved.walls2) + wall_move > 0.5 * wall_skin_) {
+    StageTimer timer{profile_.seconds[Profile::neighbor]};
+    rebuild_wall_lists();
   }
   compute_forces();
   {

@@ -68,9 +68,13 @@ class World {
  private:
   void compute_forces();
   void rebuild_neighbors();
+  void rebuild_wall_lists();
+  struct Displacements {
+    double pairs2 = 0.0, walls2 = 0.0;  // m2, largest squared displacement since each list's build
+  };
   void kick_one(long a, double h, bool rot, bool roll);
   void kick(double h);
-  double kick_drift(double h);  // returns max squared displacement since the last rebuild
+  Displacements kick_drift(double h);
 
   WorldConfig cfg_;
   std::vector<Material> materials_;
@@ -79,10 +83,11 @@ class World {
   std::vector<Wall> walls_;
   PairList pairs_;
   WallContacts wall_contacts_;
-  std::vector<Vec3> x_at_rebuild_;
+  std::vector<Vec3> x_at_rebuild_, x_at_wall_rebuild_;
+  double wall_skin_ = 0.0;  // m
   Profile profile_;
   double t_ = 0.0;
-  double t_at_rebuild_ = 0.0;
+  double t_at_wall_rebuild_ = 0.0;
   long steps_ = 0;
   bool started_ = false;
   // First problem found during a step (dense index, or -1) and its cause, reported by check().
