@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <variant>
 
+#include <omp.h>
+
 namespace pastemix::model {
 
 namespace {
@@ -15,14 +17,24 @@ std::uint64_t pair_key(std::int64_t a, std::int64_t b) {
   return (lo << 32) | hi;
 }
 
-template <class Law>
-void pair_pass(const std::vector<typename Law::Params>& table, const StepContext& ctx, const Particles& p,
+// Direct = false: one output per pair, gathered afterwards (parallel). Direct = true (one thread): the
+// forces are added to the particles in ascending pair order right away, which is exactly the order the
+// gather uses (its CSR lists each particle's pairs in ascending order), so both give the same bits.
+template <class Law, bool Direct>
+void pair_pass(const std::vector<typename Law::Params>& table, const StepContext& ctx, Particles& p,
                PairList& L) {
   const bool rot = p.has_rotation;
   const bool constant_roll = ctx.rolling == RollingLaw::constant_torque;
   const long n = static_cast<long>(L.size());
   const int w = L.width;
-#pragma omp parallel for schedule(static) if (n >= parallel_min_items)
+  if constexpr (Direct) {
+    std::fill(p.f.begin(), p.f.end(), Vec3{});
+    if (rot) {
+      std::fill(p.torque.begin(), p.torque.end(), Vec3{});
+      std::fill(p.rolling_capacity.begin(), p.rolling_capacity.end(), 0.0);
+    }
+  }
+#pragma omp parallel for schedule(static) if (!Direct && n >= parallel_min_items)
   for (long k = 0; k < n; ++k) {
     const std::uint32_t a = L.i[k], b = L.j[k];
     const Vec3 d = p.x[b] - p.x[a];
@@ -55,14 +67,27 @@ void pair_pass(const std::vector<typename Law::Params>& table, const StepContext
     g.dt = ctx.dt;
     const auto& prm = table[static_cast<std::size_t>(p.material[a] * ctx.n_materials + p.material[b])];
     const auto r = Law::force(prm, g, hist, w);
-    PairList::Out& o = L.out[k];
-    o.force_i = r.force_i;
-    if (rot) {
-      o.torque_i = cross(g.n * arm_a, r.tangential_i) + r.rolling_torque_i;
-      o.torque_j = cross(g.n * arm_b, r.tangential_i) - r.rolling_torque_i;
-      if (constant_roll) {
-        o.roll_i = prm.rolling_friction * r.normal_force * arm_a;
-        o.roll_j = prm.rolling_friction * r.normal_force * arm_b;
+    if constexpr (Direct) {
+      p.f[a] += r.force_i;
+      p.f[b] -= r.force_i;
+      if (rot) {
+        p.torque[a] += cross(g.n * arm_a, r.tangential_i) + r.rolling_torque_i;
+        p.torque[b] += cross(g.n * arm_b, r.tangential_i) - r.rolling_torque_i;
+        if (constant_roll) {
+          p.rolling_capacity[a] += prm.rolling_friction * r.normal_force * arm_a;
+          p.rolling_capacity[b] += prm.rolling_friction * r.normal_force * arm_b;
+        }
+      }
+    } else {
+      PairList::Out& o = L.out[k];
+      o.force_i = r.force_i;
+      if (rot) {
+        o.torque_i = cross(g.n * arm_a, r.tangential_i) + r.rolling_torque_i;
+        o.torque_j = cross(g.n * arm_b, r.tangential_i) - r.rolling_torque_i;
+        if (constant_roll) {
+          o.roll_i = prm.rolling_friction * r.normal_force * arm_a;
+          o.roll_j = prm.rolling_friction * r.normal_force * arm_b;
+        }
       }
     }
   }
@@ -199,11 +224,19 @@ void PairList::rebuild(const CandidatePairs& c, const Particles& p) {
   }
 }
 
-void compute_pair_forces(const LawTable& laws, const StepContext& ctx, const Particles& p, PairList& pairs) {
+void compute_pair_forces(const LawTable& laws, const StepContext& ctx, Particles& p, PairList& pairs) {
+  const bool direct = omp_get_max_threads() == 1 || static_cast<long>(pairs.size()) < parallel_min_items;
   std::visit(
       [&](const auto& table) {
         using Params = typename std::decay_t<decltype(table)>::value_type;
-        if constexpr (std::is_same_v<Params, HertzMindlin::Params>) pair_pass<HertzMindlin>(table, ctx, p, pairs);
+        if constexpr (std::is_same_v<Params, HertzMindlin::Params>) {
+          if (direct) {
+            pair_pass<HertzMindlin, true>(table, ctx, p, pairs);
+          } else {
+            pair_pass<HertzMindlin, false>(table, ctx, p, pairs);
+            gather_pair_forces(pairs, p);
+          }
+        }
       },
       laws);
 }

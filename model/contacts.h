@@ -64,8 +64,10 @@ struct StepContext {
   RollingLaw rolling = RollingLaw::none;
 };
 
-// Pair forces into the PairList SoA (law chosen once here with std::visit).
-void compute_pair_forces(const LawTable& laws, const StepContext& ctx, const Particles& p, PairList& pairs);
+// Pair forces, summed into p.f / p.torque / p.rolling_capacity (overwriting them); the law is chosen once
+// here with std::visit. With several threads: one output per pair, then gather_pair_forces; with one
+// thread the sums are made directly in the same order (bitwise the same result, no second pass).
+void compute_pair_forces(const LawTable& laws, const StepContext& ctx, Particles& p, PairList& pairs);
 // Sums pair forces into p.f / p.torque / p.rolling_capacity (overwrites them).
 void gather_pair_forces(const PairList& pairs, Particles& p);
 // Adds wall forces into p.f / p.torque / p.rolling_capacity.

@@ -80,7 +80,6 @@ void World::compute_forces() {
   {
     StageTimer timer{profile_.seconds[Profile::contact_forces]};
     compute_pair_forces(laws_, ctx, p_, pairs_);
-    gather_pair_forces(pairs_, p_);
   }
   {
     StageTimer timer{profile_.seconds[Profile::wall_forces]};

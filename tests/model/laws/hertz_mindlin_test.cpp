@@ -88,7 +88,7 @@ TEST_CASE("two-sphere head-on impact, e = 1: F_n(delta), max overlap, contact ti
       if (delta > 0) {
         delta_max = std::max(delta_max, delta);
         const Vec3 n = (p.x[1] - p.x[0]) * (1.0 / norm(p.x[1] - p.x[0]));
-        const double fn = -dot(w.pairs().out[0].force_i, n);
+        const double fn = -dot(w.particles().f[0], n);
         const double hertz = 4.0 / 3.0 * E_star * std::sqrt(R_star) * std::pow(delta, 1.5);
         if (delta > 1e-3 * delta_max_theory) fn_err = std::max(fn_err, std::abs(fn / hertz - 1.0));
       }
@@ -151,7 +151,7 @@ TEST_CASE("oblique impact: F_t(delta_t) follows Mindlin S_t delta_t before slidi
     dt_vec += (vt + vt_prev) * (0.5 * s.config.dt);
     in_contact = true;
     vt_prev = vt;
-    const Vec3 f = w.pairs().out[0].force_i;
+    const Vec3 f = w.particles().f[0];
     const double fn = -dot(f, n);
     const Vec3 ft = f + n * fn;
     if (norm(ft) >= 0.999 * mu * fn) slid = true;
