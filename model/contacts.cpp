@@ -189,7 +189,7 @@ void PairList::rebuild(const CandidatePairs& c, const Particles& p) {
   const std::size_t n = c.i.size();
   std::vector<std::uint64_t> new_key(n);
   std::vector<double> new_hist(n * static_cast<std::size_t>(width), 0.0);
-  std::vector<std::uint8_t> new_touch(n, 0);
+  std::vector<std::uint32_t> new_touch(n, 0);
   for (std::size_t k = 0; k < n; ++k) {
     new_key[k] = pair_key(p.id[c.i[k]], p.id[c.j[k]]);
     if (old_sorted.empty()) continue;

@@ -33,7 +33,7 @@ struct PairList {
     double roll_i, roll_j;   // N.m, constant-torque rolling capacity (rotation only)
   };
   std::vector<Out> out;
-  std::vector<std::uint8_t> touching;
+  std::vector<std::uint32_t> touching;  // 0/1; not uint8: a char store may alias anything and forces reloads
   // CSR: for particle p, entries [start[p], start[p+1]) of `entry` = pair * 2 + (0 if p is i, 1 if j).
   std::vector<std::uint32_t> start, entry;
 
@@ -48,7 +48,7 @@ struct WallContacts {
   int width = 0;
   int walls = 0;
   std::vector<double> history;           // (particle * walls + wall) * width
-  std::vector<std::uint8_t> touching;    // particle * walls + wall
+  std::vector<std::uint32_t> touching;   // particle * walls + wall (not uint8: char stores alias)
   std::vector<std::uint32_t> start;      // CSR: candidate walls of particle p are near[start[p] .. start[p+1])
   std::vector<std::uint16_t> near;
   void resize(std::size_t particles, int n_walls, int history_width);
