@@ -34,62 +34,68 @@ void pair_pass(const std::vector<typename Law::Params>& table, const StepContext
       std::fill(p.rolling_capacity.begin(), p.rolling_capacity.end(), 0.0);
     }
   }
-#pragma omp parallel for schedule(static) if (!Direct && n >= parallel_min_items)
-  for (long k = 0; k < n; ++k) {
-    const std::uint32_t a = L.i[k], b = L.j[k];
-    const Vec3 d = p.x[b] - p.x[a];
-    const double rsum = p.radius[a] + p.radius[b];
-    const double dist2 = norm2(d);
-    double* hist = w ? &L.history[static_cast<std::size_t>(k) * w] : nullptr;
-    if (dist2 >= rsum * rsum) {
-      // Not touching: forget the springs (a new contact starts from zero displacement). The force slots
-      // are left stale: the gather skips pairs that are not touching.
-      if (L.touching[k]) {
-        std::fill(hist, hist + w, 0.0);
-        L.touching[k] = 0;
+  // The body is a lambda so that the one-thread path is a plain loop (no outlined OpenMP function).
+  auto body = [&](long k) {
+      const std::uint32_t a = L.i[k], b = L.j[k];
+      const Vec3 d = p.x[b] - p.x[a];
+      const double rsum = p.radius[a] + p.radius[b];
+      const double dist2 = norm2(d);
+      double* hist = w ? &L.history[static_cast<std::size_t>(k) * w] : nullptr;
+      if (dist2 >= rsum * rsum) {
+        // Not touching: forget the springs (a new contact starts from zero displacement). The force slots
+        // are left stale: the gather skips pairs that are not touching.
+        if (L.touching[k]) {
+          std::fill(hist, hist + w, 0.0);
+          L.touching[k] = 0;
+        }
+        return;
       }
-      continue;
-    }
-    L.touching[k] = 1;
-    const double dist = std::sqrt(dist2);
-    typename Law::Geometry g;
-    g.n = d * (1.0 / dist);
-    g.overlap = rsum - dist;
-    const double arm_a = p.radius[a] - 0.5 * g.overlap, arm_b = p.radius[b] - 0.5 * g.overlap;
-    g.R_star = p.radius[a] * p.radius[b] / rsum;
-    g.m_star = p.mass[a] * p.mass[b] / (p.mass[a] + p.mass[b]);
-    g.v_rel = p.v[b] - p.v[a];
-    if (rot) {
-      g.v_rel += cross(p.omega[b], g.n * (-arm_b)) - cross(p.omega[a], g.n * arm_a);
-      g.w_rel = p.omega[a] - p.omega[b];
-    }
-    g.arm_i = arm_a;
-    g.dt = ctx.dt;
-    const auto& prm = table[static_cast<std::size_t>(p.material[a] * ctx.n_materials + p.material[b])];
-    const auto r = Law::force(prm, g, hist, w);
-    if constexpr (Direct) {
-      p.f[a] += r.force_i;
-      p.f[b] -= r.force_i;
+      L.touching[k] = 1;
+      const double dist = std::sqrt(dist2);
+      typename Law::Geometry g;
+      g.n = d * (1.0 / dist);
+      g.overlap = rsum - dist;
+      const double arm_a = p.radius[a] - 0.5 * g.overlap, arm_b = p.radius[b] - 0.5 * g.overlap;
+      g.R_star = p.radius[a] * p.radius[b] / rsum;
+      g.m_star = p.mass[a] * p.mass[b] / (p.mass[a] + p.mass[b]);
+      g.v_rel = p.v[b] - p.v[a];
       if (rot) {
-        p.torque[a] += cross(g.n * arm_a, r.tangential_i) + r.rolling_torque_i;
-        p.torque[b] += cross(g.n * arm_b, r.tangential_i) - r.rolling_torque_i;
-        if (constant_roll) {
-          p.rolling_capacity[a] += prm.rolling_friction * r.normal_force * arm_a;
-          p.rolling_capacity[b] += prm.rolling_friction * r.normal_force * arm_b;
+        g.v_rel += cross(p.omega[b], g.n * (-arm_b)) - cross(p.omega[a], g.n * arm_a);
+        g.w_rel = p.omega[a] - p.omega[b];
+      }
+      g.arm_i = arm_a;
+      g.dt = ctx.dt;
+      const auto& prm = table[static_cast<std::size_t>(p.material[a] * ctx.n_materials + p.material[b])];
+      const auto r = Law::force(prm, g, hist, w);
+      if constexpr (Direct) {
+        p.f[a] += r.force_i;
+        p.f[b] -= r.force_i;
+        if (rot) {
+          p.torque[a] += cross(g.n * arm_a, r.tangential_i) + r.rolling_torque_i;
+          p.torque[b] += cross(g.n * arm_b, r.tangential_i) - r.rolling_torque_i;
+          if (constant_roll) {
+            p.rolling_capacity[a] += prm.rolling_friction * r.normal_force * arm_a;
+            p.rolling_capacity[b] += prm.rolling_friction * r.normal_force * arm_b;
+          }
+        }
+      } else {
+        PairList::Out& o = L.out[k];
+        o.force_i = r.force_i;
+        if (rot) {
+          o.torque_i = cross(g.n * arm_a, r.tangential_i) + r.rolling_torque_i;
+          o.torque_j = cross(g.n * arm_b, r.tangential_i) - r.rolling_torque_i;
+          if (constant_roll) {
+            o.roll_i = prm.rolling_friction * r.normal_force * arm_a;
+            o.roll_j = prm.rolling_friction * r.normal_force * arm_b;
+          }
         }
       }
-    } else {
-      PairList::Out& o = L.out[k];
-      o.force_i = r.force_i;
-      if (rot) {
-        o.torque_i = cross(g.n * arm_a, r.tangential_i) + r.rolling_torque_i;
-        o.torque_j = cross(g.n * arm_b, r.tangential_i) - r.rolling_torque_i;
-        if (constant_roll) {
-          o.roll_i = prm.rolling_friction * r.normal_force * arm_a;
-          o.roll_j = prm.rolling_friction * r.normal_force * arm_b;
-        }
-      }
-    }
+  };
+  if constexpr (Direct) {
+    for (long k = 0; k < n; ++k) body(k);
+  } else {
+#pragma omp parallel for schedule(static) if (n >= parallel_min_items)
+    for (long k = 0; k < n; ++k) body(k);
   }
 }
 
