@@ -54,6 +54,12 @@ RunOutput::RunOutput(const std::filesystem::path& h5_path, std::string h5_final_
   h5_->attribute("/", "time_step_s", scene.config.dt);
   h5_->attribute("/", "end_time_s", scene.end_time);
   h5_->attribute("/", "particle_count", static_cast<std::int64_t>(scene.particles.size()));
+  // The resolved Plan and defaults (what the scene text leaves implicit).
+  h5_->attribute("/", "skin_m", scene.config.skin);
+  h5_->attribute("/", "rotation", static_cast<std::int64_t>(scene.plan.rotation));
+  h5_->attribute("/", "history_width", static_cast<std::int64_t>(scene.plan.history_width));
+  h5_->attribute("/", "output_interval_s", scene.output_interval);
+  h5_->attribute("/", "energy_interval_s", scene.energy_interval);
   std::vector<std::string> names;
   for (const auto& m : scene.materials) names.push_back(m.name);
   h5_->write_strings("/materials", names);

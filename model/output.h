@@ -3,7 +3,8 @@
 //
 //   /                         attributes: scene_path, scene_text (the resolved scene file), scene_hash
 //                             (FNV-1a 64 of the text, hex), seed, law, rolling, time_step_s, end_time_s,
-//                             particle_count
+//                             particle_count, and the resolved Plan/defaults: skin_m, rotation (0/1),
+//                             history_width, output_interval_s, energy_interval_s
 //   /materials                (M strings) material names; snapshots' `material` indexes this list
 //   /snapshots/time           (S) s
 //   /snapshots/NNNNNN/        one group per snapshot (attribute time_s):

@@ -16,7 +16,7 @@
 //   rolling = "constant_torque"    # "none" | "constant_torque" (EDEM standard) | "elastic_plastic"
 //   rolling_damping = 0.3          # elastic_plastic only: eta_r (critical ratio), default 0.3
 //   [neighbor]
-//   skin = 1e-3                    # m, Verlet skin (default: 0.5 x smallest... radius, see scene.cpp)
+//   skin = 1e-3                    # m, Verlet skin (default: the smallest particle radius)
 //   [output]                       # optional
 //   interval = 0.01                # s between particle snapshots (default end_time / 20)
 //   energy_interval = 0.001        # s between energy / contact-count samples (default interval)
