@@ -88,6 +88,7 @@ void read_wall(const Params& w, const std::vector<Material>& mats, std::vector<W
       r.origin = o;
       r.u = u;
       r.v = v;
+      r.finish();
       out.push_back(r);
     };
     rect({c.x, c.y, lo.z}, {h.x, 0, 0}, {0, h.y, 0});  // floor

@@ -31,9 +31,10 @@ double wall_distance(const Wall& w, const Vec3& shift, const Vec3& p, Vec3* n_to
     }
     case WallKind::rectangle: {
       const Vec3 rel = p - o;
-      const double lu = norm2(w.u), lv = norm2(w.v);
-      const double su = clamp_unit(dot(rel, w.u) / lu, -1.0, 1.0);
-      const double sv = clamp_unit(dot(rel, w.v) / lv, -1.0, 1.0);
+      const double iu = w.inv_u2 > 0.0 ? w.inv_u2 : 1.0 / norm2(w.u);
+      const double iv = w.inv_v2 > 0.0 ? w.inv_v2 : 1.0 / norm2(w.v);
+      const double su = clamp_unit(dot(rel, w.u) * iu, -1.0, 1.0);
+      const double sv = clamp_unit(dot(rel, w.v) * iv, -1.0, 1.0);
       const Vec3 c = o + w.u * su + w.v * sv;
       const Vec3 d = c - p;
       const double len = norm(d);

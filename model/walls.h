@@ -30,6 +30,7 @@ struct Wall {
   Vec3 origin;         // m, at t = 0
   Vec3 normal;         // plane: unit normal towards the particles
   Vec3 u, v;           // rectangle: half-axes (m)
+  double inv_u2 = 0.0, inv_v2 = 0.0;  // rectangle: 1/|u|^2, 1/|v|^2 (1/m2), set by finish(); 0 = compute
   double r0 = 0, z0 = 0, r1 = 0, z1 = 0;  // revolution: meridian segment (m)
   Vec3 velocity;       // m/s, prescribed translation while move_start <= t < move_end
   double move_start = 0.0;  // s
@@ -37,6 +38,13 @@ struct Wall {
   double remove_at = std::numeric_limits<double>::infinity(); // s, the wall stops existing at this time
 
   bool active(double t) const { return t < remove_at; }
+  // Precomputes what wall_distance would otherwise recompute at every call.
+  void finish() {
+    if (kind == WallKind::rectangle) {
+      inv_u2 = 1.0 / norm2(u);
+      inv_v2 = 1.0 / norm2(v);
+    }
+  }
   // Displacement since t = 0 (m) and current velocity (m/s).
   Vec3 displacement(double t) const;
   Vec3 velocity_at(double t) const;
