@@ -1,0 +1,150 @@
+// SPDX-License-Identifier: MIT
+// Hertz-Mindlin (no slip) with restitution damping, Coulomb-limited tangential spring and rolling
+// resistance: the law EDEM and LIGGGHTS call "hertz" (DESIGN.md section 3).
+//
+//   1/E* = (1-nu1^2)/E1 + (1-nu2^2)/E2    1/R* = 1/R1 + 1/R2    1/m* = 1/m1 + 1/m2
+//   1/G* = (2-nu1)/G1 + (2-nu2)/G2        beta = ln e / sqrt(ln^2 e + pi^2)
+//   F_n = 4/3 E* sqrt(R*) delta^1.5       S_n = 2 E* sqrt(R* delta)
+//   F_n^d = -2 sqrt(5/6) beta sqrt(S_n m*) v_n
+//   S_t = 8 G* sqrt(R* delta)             F_t = -S_t delta_t,  F_t^d = -2 sqrt(5/6) beta sqrt(S_t m*) v_t
+//   |F_t| <= mu_s F_n (on slip the spring is rescaled so that S_t |delta_t| = mu_s F_n)
+//
+// Walls are spheres of infinite radius and mass: the caller passes R* = R_particle and m* = m_particle.
+// The kernel is stateless; the tangential spring delta_t (and the rolling spring for the elastic-plastic
+// law) live in the caller's history slots, keyed by the pair of particle ids.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+
+#include "model/material.h"
+#include "model/vec3.h"
+
+namespace pastemix::model {
+
+struct HertzMindlin {
+  struct Params {
+    double E_star = 0.0;         // Pa, effective Young's modulus
+    double G_star = 0.0;         // Pa, effective shear modulus
+    double damping = 0.0;        // -, -2 sqrt(5/6) beta >= 0 (0 when e = 1)
+    double sqrt_st_over_sn = 0.0;  // -, sqrt(S_t / S_n) = sqrt(4 G* / E*): saves a sqrt per contact
+    double friction = 0.0;       // -, mu_s
+    double rolling_friction = 0.0;  // -, mu_r
+    double rolling_damping = 0.0;   // -, eta_r of the elastic-plastic law (critical-damping ratio)
+    RollingLaw rolling = RollingLaw::none;
+  };
+
+  // History per contact: tangential spring (3) + rolling spring (3, elastic-plastic only).
+  static constexpr int history_size = 6;
+  static int history_width(bool tangential, RollingLaw rolling) {
+    return rolling == RollingLaw::elastic_plastic ? 6 : (tangential ? 3 : 0);
+  }
+  static constexpr bool needs_torque = true;
+
+  // Mixes a material pair once, at load time.
+  static Params from_pair(const MaterialPair& p, RollingLaw rolling, double rolling_damping) {
+    const Material& a = *p.a;
+    const Material& b = *p.b;
+    Params q;
+    q.E_star = 1.0 / ((1.0 - a.poisson_ratio * a.poisson_ratio) / a.youngs_modulus +
+                      (1.0 - b.poisson_ratio * b.poisson_ratio) / b.youngs_modulus);
+    q.G_star = 1.0 / ((2.0 - a.poisson_ratio) / a.shear_modulus() + (2.0 - b.poisson_ratio) / b.shear_modulus());
+    const double le = std::log(p.restitution);
+    const double beta = le / std::sqrt(le * le + M_PI * M_PI);
+    q.damping = -2.0 * std::sqrt(5.0 / 6.0) * beta;
+    q.sqrt_st_over_sn = std::sqrt(4.0 * q.G_star / q.E_star);
+    q.friction = p.friction;
+    q.rolling_friction = p.rolling_friction;
+    q.rolling = rolling;
+    q.rolling_damping = rolling_damping;
+    return q;
+  }
+
+  // Geometry and kinematics of one contact, seen from particle i. n points from i to j; for a wall, i is
+  // the particle and n points from the particle towards the wall.
+  struct Geometry {
+    Vec3 n;              // unit normal, i -> j
+    double overlap;      // m, > 0
+    double R_star;       // m
+    double m_star;       // kg
+    Vec3 v_rel;          // m/s, velocity of j's contact point minus i's
+    Vec3 w_rel;          // rad/s, omega_i - omega_j (rolling); unused without rotation
+    double arm_i;        // m, centre of i to contact point
+    double dt;           // s
+  };
+  struct Result {
+    Vec3 force_i;          // N, on i (j gets -force_i)
+    Vec3 tangential_i;     // N, tangential part of force_i (the caller turns it into torques)
+    Vec3 rolling_torque_i; // N.m, elastic-plastic rolling moment on i (j gets the opposite)
+    double normal_force;   // N, F_n >= 0 used for Coulomb and rolling limits
+  };
+
+  // history: `width` doubles owned by this contact (tangential spring, then rolling spring).
+  static Result force(const Params& p, const Geometry& g, double* history, int width) {
+    Result r{};
+    const double sqrt_Rd = std::sqrt(g.R_star * g.overlap);
+    const double Sn = 2.0 * p.E_star * sqrt_Rd;
+    const double fn_elastic = (2.0 / 3.0) * Sn * g.overlap;  // = 4/3 E* sqrt(R*) delta^1.5
+    const double vn = dot(g.v_rel, g.n);                     // < 0 while approaching
+    const double sqrt_sn_m = std::sqrt(Sn * g.m_star);
+    const double fn = fn_elastic - p.damping * sqrt_sn_m * vn;  // repulsive > 0
+    r.normal_force = std::max(fn, 0.0);
+    r.force_i = g.n * (-fn);
+    if (width == 0) return r;
+
+    // Tangential spring: rotate the stored displacement into the current tangent plane (keeping its
+    // length), then add this step's tangential slip.
+    Vec3 xi{history[0], history[1], history[2]};
+    const double xi_len = norm(xi);
+    xi -= g.n * dot(xi, g.n);
+    const double xi_len2 = norm(xi);
+    if (xi_len2 > 0.0) xi *= xi_len / xi_len2;
+    const Vec3 vt = g.v_rel - g.n * vn;
+    xi += vt * g.dt;
+    const double St = 8.0 * p.G_star * sqrt_Rd;
+    Vec3 ft = xi * St + vt * (p.damping * sqrt_sn_m * p.sqrt_st_over_sn);  // on i: drags i along with j
+    const double ft_len = norm(ft);
+    const double ft_max = p.friction * r.normal_force;
+    if (ft_len > ft_max) {
+      // Slip: the friction force sits on the Coulomb limit and the spring carries all of it.
+      ft = ft_len > 0.0 ? ft * (ft_max / ft_len) : Vec3{};
+      xi = St > 0.0 ? ft * (1.0 / St) : Vec3{};
+    }
+    history[0] = xi.x;
+    history[1] = xi.y;
+    history[2] = xi.z;
+    r.tangential_i = ft;
+    r.force_i += ft;
+
+    if (p.rolling == RollingLaw::elastic_plastic) {
+      // Rolling spring on the relative rotation omega_i - omega_j, limited by mu_r R* F_n; the dashpot acts
+      // only while the spring is below its limit (Ai et al. 2011). The whole relative rotation is used, the
+      // twist about n included (as LIGGGHTS epsd2 does): with the tangential part only, a sphere spinning
+      // about the vertical on a floor never stops and a pile never comes to rest (seen in the pile test).
+      Vec3 m{history[3], history[4], history[5]};
+      const Vec3 wr = g.w_rel;
+      const double kn = Sn;
+      const double kr = 2.25 * kn * p.rolling_friction * p.rolling_friction * g.R_star * g.R_star;
+      m -= wr * (kr * g.dt);
+      const double m_max = p.rolling_friction * g.R_star * r.normal_force;
+      const double m_len = norm(m);
+      Vec3 total = m;
+      if (m_len > m_max) {
+        m *= m_max / m_len;
+        total = m;
+      } else {
+        // Rolling inertia of the pair about the contact: I_r = m* R*^2 (sphere-sphere estimate, 1.4 of
+        // the solid-sphere 2/5 m r^2 seen from the contact point, as LIGGGHTS epsd2 approximates).
+        const double cr = p.rolling_damping * 2.0 * std::sqrt(1.4 * g.m_star * g.R_star * g.R_star * kr);
+        total -= wr * cr;
+      }
+      history[3] = m.x;
+      history[4] = m.y;
+      history[5] = m.z;
+      r.rolling_torque_i = total;
+    }
+    return r;
+  }
+};
+
+}  // namespace pastemix::model

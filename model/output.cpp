@@ -1,0 +1,148 @@
+// SPDX-License-Identifier: MIT
+#include "model/output.h"
+
+#include <fmt/format.h>
+
+#include "base/h5.h"
+#include "model/scene.h"
+
+namespace pastemix::model {
+
+std::string scene_hash(const std::string& text) {
+  std::uint64_t h = 1469598103934665603ULL;
+  for (unsigned char c : text) {
+    h ^= c;
+    h *= 1099511628211ULL;
+  }
+  return fmt::format("{:016x}", h);
+}
+
+namespace {
+
+const char* rolling_name(RollingLaw r) {
+  switch (r) {
+    case RollingLaw::none: return "none";
+    case RollingLaw::constant_torque: return "constant_torque";
+    case RollingLaw::elastic_plastic: return "elastic_plastic";
+  }
+  return "?";
+}
+
+std::vector<double> flat(const std::vector<Vec3>& v) {
+  std::vector<double> out(3 * v.size());
+  for (std::size_t k = 0; k < v.size(); ++k) {
+    out[3 * k] = v[k].x;
+    out[3 * k + 1] = v[k].y;
+    out[3 * k + 2] = v[k].z;
+  }
+  return out;
+}
+
+std::string group(std::size_t k) { return fmt::format("/snapshots/{:06d}", k); }
+
+}  // namespace
+
+RunOutput::RunOutput(const std::filesystem::path& h5_path, std::string h5_final_name, const Scene& scene)
+    : h5_(std::make_unique<H5Writer>(h5_path)), h5_name_(std::move(h5_final_name)),
+      rotation_(scene.plan.rotation) {
+  h5_->attribute("/", "scene_path", scene.path);
+  h5_->attribute("/", "scene_text", scene.text);
+  h5_->attribute("/", "scene_hash", scene_hash(scene.text));
+  h5_->attribute("/", "seed", static_cast<std::int64_t>(scene.seed));
+  h5_->attribute("/", "law", scene.plan.law);
+  h5_->attribute("/", "rolling", rolling_name(scene.config.rolling));
+  h5_->attribute("/", "time_step_s", scene.config.dt);
+  h5_->attribute("/", "end_time_s", scene.end_time);
+  h5_->attribute("/", "particle_count", static_cast<std::int64_t>(scene.particles.size()));
+  // The resolved Plan and defaults (what the scene text leaves implicit).
+  h5_->attribute("/", "skin_m", scene.config.skin);
+  h5_->attribute("/", "rotation", static_cast<std::int64_t>(scene.plan.rotation));
+  h5_->attribute("/", "history_width", static_cast<std::int64_t>(scene.plan.history_width));
+  h5_->attribute("/", "output_interval_s", scene.output_interval);
+  h5_->attribute("/", "energy_interval_s", scene.energy_interval);
+  std::vector<std::string> names;
+  for (const auto& m : scene.materials) names.push_back(m.name);
+  h5_->write_strings("/materials", names);
+}
+
+RunOutput::~RunOutput() = default;
+
+void RunOutput::snapshot(const World& w) {
+  const Particles& p = w.particles();
+  const std::string g = group(snap_times_.size());
+  const std::uint64_t n = p.size();
+  h5_->write(g + "/position", flat(p.x), {n, 3});
+  h5_->write(g + "/velocity", flat(p.v), {n, 3});
+  h5_->write(g + "/radius", p.radius, {n});
+  h5_->write(g + "/id", p.id, {n});
+  std::vector<std::int32_t> mat(p.material.begin(), p.material.end());
+  h5_->write(g + "/material", mat, {n});
+  if (rotation_) h5_->write(g + "/angular_velocity", flat(p.omega), {n, 3});
+  h5_->attribute(g, "time_s", w.time());
+  snap_times_.push_back(w.time());
+  snap_counts_.push_back(p.size());
+}
+
+void RunOutput::sample(const World& w) {
+  const Energies e = w.energies();
+  t_.push_back(w.time());
+  ke_.push_back(e.kinetic);
+  rot_.push_back(e.rotational);
+  pot_.push_back(e.potential);
+  el_.push_back(e.elastic);
+  npair_.push_back(e.pair_contacts);
+  nwall_.push_back(e.wall_contacts);
+}
+
+std::string RunOutput::finish(const World& w, double wall_seconds, int threads) {
+  h5_->write("/snapshots/time", snap_times_);
+  h5_->write("/timeseries/time", t_);
+  h5_->write("/timeseries/kinetic", ke_);
+  h5_->write("/timeseries/rotational", rot_);
+  h5_->write("/timeseries/potential", pot_);
+  h5_->write("/timeseries/elastic", el_);
+  h5_->write("/timeseries/pair_contacts", npair_);
+  h5_->write("/timeseries/wall_contacts", nwall_);
+  const Profile& prof = w.profile();
+  std::vector<std::string> names(Profile::names.begin(), Profile::names.end());
+  std::vector<double> secs(prof.seconds.begin(), prof.seconds.end());
+  h5_->write_strings("/profile/stage", names);
+  h5_->write("/profile/seconds", secs);
+  h5_->attribute("/profile", "steps", static_cast<std::int64_t>(w.steps()));
+  h5_->attribute("/profile", "rebuilds", static_cast<std::int64_t>(prof.rebuilds));
+  h5_->attribute("/profile", "wall_seconds", wall_seconds);
+  h5_->attribute("/profile", "steps_per_second", wall_seconds > 0 ? static_cast<double>(w.steps()) / wall_seconds : 0.0);
+  h5_->attribute("/profile", "threads", static_cast<std::int64_t>(threads));
+  h5_->flush();
+  h5_.reset();
+
+  std::string x = "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n<Xdmf Version=\"2.0\">\n <Domain>\n";
+  x += "  <Grid Name=\"particles\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+  for (std::size_t k = 0; k < snap_times_.size(); ++k) {
+    const std::string g = group(k);
+    const std::size_t n = snap_counts_[k];
+    x += fmt::format("   <Grid Name=\"step{:06d}\" GridType=\"Uniform\">\n", k);
+    x += fmt::format("    <Time Value=\"{:.9g}\"/>\n", snap_times_[k]);
+    x += fmt::format("    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"{}\" NodesPerElement=\"1\"/>\n", n);
+    x += "    <Geometry GeometryType=\"XYZ\">\n";
+    x += fmt::format("     <DataItem Dimensions=\"{} 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">{}:{}/position</DataItem>\n",
+                     n, h5_name_, g);
+    x += "    </Geometry>\n";
+    auto attr = [&](const char* name, const char* type, const char* ds, const std::string& dims, const char* num,
+                    int prec) {
+      x += fmt::format("    <Attribute Name=\"{}\" AttributeType=\"{}\" Center=\"Node\">\n", name, type);
+      x += fmt::format("     <DataItem Dimensions=\"{}\" NumberType=\"{}\" Precision=\"{}\" Format=\"HDF\">{}:{}/{}</DataItem>\n",
+                       dims, num, prec, h5_name_, g, ds);
+      x += "    </Attribute>\n";
+    };
+    attr("radius", "Scalar", "radius", fmt::format("{}", n), "Float", 8);
+    attr("id", "Scalar", "id", fmt::format("{}", n), "Int", 8);
+    attr("velocity", "Vector", "velocity", fmt::format("{} 3", n), "Float", 8);
+    if (rotation_) attr("angular_velocity", "Vector", "angular_velocity", fmt::format("{} 3", n), "Float", 8);
+    x += "   </Grid>\n";
+  }
+  x += "  </Grid>\n </Domain>\n</Xdmf>\n";
+  return x;
+}
+
+}  // namespace pastemix::model

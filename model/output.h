@@ -1,0 +1,61 @@
+// SPDX-License-Identifier: MIT
+// The HDF5 schema of a run (the only model header the analysis layer needs) and its XDMF companion.
+//
+//   /                         attributes: scene_path, scene_text (the resolved scene file), scene_hash
+//                             (FNV-1a 64 of the text, hex), seed, law, rolling, time_step_s, end_time_s,
+//                             particle_count, and the resolved Plan/defaults: skin_m, rotation (0/1),
+//                             history_width, output_interval_s, energy_interval_s
+//   /materials                (M strings) material names; snapshots' `material` indexes this list
+//   /snapshots/time           (S) s
+//   /snapshots/NNNNNN/        one group per snapshot (attribute time_s):
+//       position (N x 3, m), velocity (N x 3, m/s), radius (N, m), id (N, int64), material (N, int32),
+//       angular_velocity (N x 3, rad/s; only with rotation)
+//   /timeseries/              sampled every energy_interval: time (s), kinetic, rotational, potential,
+//                             elastic (J), pair_contacts, wall_contacts (int64)
+//   /profile/stage (strings), /profile/seconds (wall s per stage); attributes steps, rebuilds,
+//                             wall_seconds, steps_per_second, threads
+//
+// The .xmf file beside it is XDMF 2: a temporal collection of Polyvertex grids whose Geometry (XYZ) and
+// attributes (radius, id, velocity) point into the .h5, so ParaView opens the particles directly
+// (use "Point Gaussian" with radius as the scale array to see spheres).
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "model/world.h"
+
+namespace pastemix {
+class H5Writer;
+}
+
+namespace pastemix::model {
+
+struct Scene;
+
+class RunOutput {
+ public:
+  // h5_path is where the data are written now (a staged temporary name); h5_final_name is the file name
+  // the .xmf refers to (it sits beside the final .h5).
+  RunOutput(const std::filesystem::path& h5_path, std::string h5_final_name, const Scene& scene);
+  ~RunOutput();
+  void snapshot(const World& w);
+  void sample(const World& w);
+  // Writes the time series, the profile and closes the file; returns the XDMF text.
+  std::string finish(const World& w, double wall_seconds, int threads);
+
+ private:
+  std::unique_ptr<H5Writer> h5_;
+  std::string h5_name_;
+  bool rotation_ = false;
+  std::vector<double> snap_times_;
+  std::vector<std::size_t> snap_counts_;
+  std::vector<double> t_, ke_, rot_, pot_, el_;
+  std::vector<std::int64_t> npair_, nwall_;
+};
+
+std::string scene_hash(const std::string& text);
+
+}  // namespace pastemix::model

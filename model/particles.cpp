@@ -1,0 +1,27 @@
+// SPDX-License-Identifier: MIT
+#include "model/particles.h"
+
+#include "base/units.h"
+
+namespace pastemix::model {
+
+void Particles::add(int material_index, double radius_m, double density, const Vec3& position,
+                    const Vec3& velocity, const Vec3& angular_velocity) {
+  const double m = density * 4.0 / 3.0 * units::pi * radius_m * radius_m * radius_m;
+  id.push_back(static_cast<std::int64_t>(x.size()));
+  material.push_back(material_index);
+  radius.push_back(radius_m);
+  mass.push_back(m);
+  inv_mass.push_back(1.0 / m);
+  x.push_back(position);
+  v.push_back(velocity);
+  f.push_back({});
+  if (has_rotation) {
+    omega.push_back(angular_velocity);
+    torque.push_back({});
+    inv_inertia.push_back(1.0 / (0.4 * m * radius_m * radius_m));
+    rolling_capacity.push_back(0.0);
+  }
+}
+
+}  // namespace pastemix::model

@@ -1,0 +1,85 @@
+// SPDX-License-Identifier: MIT
+#include "model/run.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include <fmt/format.h>
+#include <omp.h>
+
+#include "base/staged_output.h"
+#include "model/output.h"
+
+namespace pastemix::model {
+
+std::string format_profile(const Profile& p, long steps, double wall_seconds, std::size_t particles) {
+  double total = 0.0;
+  for (double s : p.seconds) total += s;
+  std::string out = fmt::format("stage profile ({} steps, {} particles, {} neighbour rebuilds):\n", steps,
+                                particles, p.rebuilds);
+  for (int k = 0; k < Profile::count; ++k)
+    out += fmt::format("  {:<15} {:9.3f} s  {:5.1f} %\n", Profile::names[k], p.seconds[k],
+                       total > 0 ? 100.0 * p.seconds[k] / total : 0.0);
+  const double sps = wall_seconds > 0 ? static_cast<double>(steps) / wall_seconds : 0.0;
+  out += fmt::format("  {:<15} {:9.3f} s  ({:.0f} steps/s, {:.3g} particle-steps/s)\n", "total wall", wall_seconds,
+                     sps, sps * static_cast<double>(particles));
+  return out;
+}
+
+RunSummary run_scene(const Scene& scene, const std::filesystem::path& out_dir, const RunOptions& opt) {
+  using Clock = std::chrono::steady_clock;
+  RunSummary r;
+  r.threads = omp_get_max_threads();
+  const std::string stem = std::filesystem::path(scene.path).stem().string();
+  r.h5 = out_dir / (stem + ".h5");
+  r.xmf = out_dir / (stem + ".xmf");
+  StagedOutput staged;
+  const auto h5_tmp = staged.path(r.h5);
+  World world = make_world(scene);
+  RunOutput out(h5_tmp, r.h5.filename().string(), scene);
+
+  const double dt = scene.config.dt;
+  const long total_steps = std::lround(scene.end_time / dt);
+  const long snap_every = std::max(1L, std::lround(scene.output_interval / dt));
+  const long sample_every = std::max(1L, std::lround(scene.energy_interval / dt));
+  const auto t0 = Clock::now();
+  auto last_progress = t0;
+  auto emit = [&](long s) {
+    auto timer0 = Clock::now();
+    if (s % snap_every == 0 || s == total_steps) out.snapshot(world);
+    if (s % sample_every == 0 || s == total_steps) out.sample(world);
+    world.profile().seconds[Profile::output] += std::chrono::duration<double>(Clock::now() - timer0).count();
+  };
+  world.check();
+  emit(0);
+  for (long s = 1; s <= total_steps; ++s) {
+    world.step();
+    if (s % opt.check_every == 0) world.check();
+    emit(s);
+    if (opt.progress && s % 100 == 0) {
+      const auto now = Clock::now();
+      if (std::chrono::duration<double>(now - last_progress).count() >= opt.progress_every_s) {
+        last_progress = now;
+        const double el = std::chrono::duration<double>(now - t0).count();
+        const double sps = static_cast<double>(s) / el;
+        std::fprintf(stderr, "\rt = %.4g / %.4g s  %.0f steps/s  ETA %.0f s   ", world.time(), scene.end_time, sps,
+                     static_cast<double>(total_steps - s) / sps);
+        std::fflush(stderr);
+      }
+    }
+  }
+  world.check();
+  if (opt.progress) std::fprintf(stderr, "\n");
+  r.wall_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  r.steps = world.steps();
+  r.steps_per_second = r.wall_seconds > 0 ? static_cast<double>(r.steps) / r.wall_seconds : 0.0;
+  const std::string xmf = out.finish(world, r.wall_seconds, r.threads);
+  staged.write_text(r.xmf, xmf);
+  staged.commit();
+  r.profile = world.profile();
+  r.profile_table = format_profile(r.profile, r.steps, r.wall_seconds, world.particles().size());
+  return r;
+}
+
+}  // namespace pastemix::model

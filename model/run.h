@@ -1,0 +1,36 @@
+// SPDX-License-Identifier: MIT
+// Running a scene to its end time with snapshots, energy samples, a progress line and diagnostics.
+//
+//   Scene s = load_scene("pour_box.toml");
+//   RunSummary r = run_scene(s, "out");   // writes out/pour_box.h5 and out/pour_box.xmf (both or neither)
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "model/scene.h"
+
+namespace pastemix::model {
+
+struct RunOptions {
+  bool progress = true;        // throttled progress line on stderr
+  double progress_every_s = 2.0;  // wall seconds between progress lines
+  int check_every = 50;        // steps between full diagnostics (NaN and domain are checked every step)
+};
+
+struct RunSummary {
+  std::filesystem::path h5, xmf;
+  long steps = 0;
+  double wall_seconds = 0.0;
+  double steps_per_second = 0.0;
+  int threads = 1;
+  Profile profile;
+  std::string profile_table;   // the per-stage table printed at the end of `pastemix run`
+};
+
+// Output files are named after the scene file's stem. On a RuntimeFailure nothing is left behind.
+RunSummary run_scene(const Scene& scene, const std::filesystem::path& out_dir, const RunOptions& options = {});
+
+std::string format_profile(const Profile& p, long steps, double wall_seconds, std::size_t particles);
+
+}  // namespace pastemix::model

@@ -1,0 +1,96 @@
+// SPDX-License-Identifier: MIT
+// Scenes: TOML -> Scene (a resolved Plan plus the initial state). The format below is stable: the
+// benchmark harness and later issues write scenes in it. All values SI (m, kg, s, Pa).
+//
+//   seed = 1                       # insertion RNG; recorded in the output
+//   time_step = 2e-6               # s
+//   end_time = 0.5                 # s
+//   [domain]                       # a particle outside this box stops the run (exit 3)
+//   min = [-0.2, -0.2, -0.05]      # m
+//   max = [0.2, 0.2, 0.6]
+//   [physics]                      # optional
+//   gravity = [0, 0, -9.81]        # m/s2 (default)
+//   rotation = true                # false: spheres do not rotate (no angular arrays)
+//   [contact]
+//   law = "hertz_mindlin"
+//   rolling = "constant_torque"    # "none" | "constant_torque" (EDEM standard) | "elastic_plastic"
+//   rolling_damping = 0.3          # elastic_plastic only: eta_r (critical ratio), default 0.3
+//   [neighbor]
+//   skin = 1e-3                    # m, Verlet skin (default: the smallest particle radius)
+//   [output]                       # optional
+//   interval = 0.01                # s between particle snapshots (default end_time / 20)
+//   energy_interval = 0.001        # s between energy / contact-count samples (default interval)
+//   [[material]]
+//   name = "rock"  density = 2760  youngs_modulus = 4.68e7  poisson_ratio = 0.19
+//   [[interaction]]                # one per pair of materials that can touch (walls included)
+//   materials = "rock/rock"        # "a/b", order-free
+//   restitution = 0.79  friction = 0.466  rolling_friction = 0.15
+//   [initial_state]                # optional: start from a snapshot of an earlier run (a settled bed)
+//   file = "settled.h5"            # relative to this scene file
+//   snapshot = -1                  # index, -1 = last; materials are matched by name
+//   [[particle]]                   # explicit spheres
+//   material = "rock"  radius = 0.01  position = [0, 0, 0.1]
+//   velocity = [0, 0, 0]  angular_velocity = [0, 0, 0]     # optional
+//   [[factory]]                    # fill a region at t = 0 with a PSD, without overlaps
+//   material = "rock"  mass = 0.3  # kg of rock
+//   shape = "box"  min = [..]  max = [..]                    # or
+//   shape = "cylinder"  center = [x, y]  radius = 0.05  z_min = 0  z_max = 0.1   # or
+//   shape = "funnel"  wall = "funnel"                        # the cone part of a funnel wall
+//   seed = 7                       # optional, default = scene seed + factory index
+//   [[factory.psd]]                # sieve intervals (m) and mass fractions (sum 1)
+//   d_min = 2.5e-3  d_max = 5e-3  fraction = 1.0
+//   [[wall]]                       # name, type, material, then the type's keys:
+//   type = "plane"     point = [..]  normal = [..]           (normal towards the particles)
+//   type = "box"       min = [..]  max = [..]                (open top: floor + 4 sides)
+//   type = "cylinder"  center = [x, y]  radius  z_min  z_max
+//   type = "cone"      center = [x, y]  z0  r0  z1  r1       (frustum)
+//   type = "disk"      center = [x, y, z]  radius            (a plate)
+//   type = "funnel"    center = [x, y]  z_exit  exit_diameter  top_diameter  height  tube_length
+//   velocity = [0, 0, 0.01]  move_start = 0  move_end = inf  # optional prescribed translation (m/s, s)
+//   remove_at = 0.1                                          # optional: the wall vanishes at t (s)
+//
+// Checks (InputError with file:line): unknown keys; negative or zero radius, modulus, density; restitution
+// outside (0, 1]; a material or wall name used but not defined; a pair of materials that can touch without
+// an [[interaction]]; an explicit particle overlapping another or a wall, or outside the domain; a wall
+// passing through a factory region (e.g. a plate across the fill box); a factory region too small.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "model/world.h"
+
+namespace pastemix::model {
+
+// What the scene needs the engine to run (STYLE 5.3): passes, arrays, history width.
+struct Plan {
+  std::string law = "hertz_mindlin";
+  bool rotation = true;       // angular arrays allocated and integrated
+  bool tangential = true;     // some pair has friction -> tangential history
+  int history_width = 0;      // doubles per contact
+  bool fluid = false;         // the [fluid] table (later issue); absent -> no fluid arrays or pass
+};
+
+struct Scene {
+  std::string path;           // as given
+  std::string text;           // the scene file as read (stored in the output)
+  std::uint64_t seed = 1;
+  double end_time = 0.0;      // s
+  double output_interval = 0.0;  // s
+  double energy_interval = 0.0;  // s
+  Plan plan;
+  WorldConfig config;
+  std::vector<Material> materials;
+  std::vector<MaterialPair> pairs;  // n_materials^2, symmetric
+  LawTable laws;
+  Particles particles;
+  std::vector<Wall> walls;
+};
+
+Scene load_scene(const std::filesystem::path& path);
+Scene parse_scene(std::string_view text, const std::string& display_path);
+World make_world(const Scene& scene);
+
+}  // namespace pastemix::model

@@ -1,0 +1,58 @@
+// SPDX-License-Identifier: MIT
+// Walls: a closed set of primitive surfaces (enum + switch, no virtual calls), each with a material, an
+// optional prescribed translation and an optional removal time.
+//
+// Primitives:
+//   plane      one-sided half-space: solid behind `normal` (points into the particle side).
+//   rectangle  two-sided finite rectangle: origin = centre, half-axes u and v (their lengths are the
+//              half-extents). An open box is five rectangles.
+//   revolution two-sided surface of revolution about a vertical axis through `origin` (x, y): the segment
+//              (r0, z0)-(r1, z1) in the meridian half-plane, z relative to origin.z. r0 == r1 is a cylinder,
+//              z0 == z1 a disk or annulus, otherwise a cone frustum. The funnel is a frustum plus its exit
+//              tube (a cylinder).
+// Scene shapes (box, cylinder, cone, funnel, disk, plane) expand into these primitives in scene.cpp.
+#pragma once
+
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "model/vec3.h"
+
+namespace pastemix::model {
+
+enum class WallKind { plane, rectangle, revolution };
+
+struct Wall {
+  WallKind kind = WallKind::plane;
+  std::string name;    // the scene's wall name (several primitives may share it)
+  int material = 0;
+  Vec3 origin;         // m, at t = 0
+  Vec3 normal;         // plane: unit normal towards the particles
+  Vec3 u, v;           // rectangle: half-axes (m)
+  double inv_u2 = 0.0, inv_v2 = 0.0;  // rectangle: 1/|u|^2, 1/|v|^2 (1/m2), set by finish(); 0 = compute
+  double r0 = 0, z0 = 0, r1 = 0, z1 = 0;  // revolution: meridian segment (m)
+  Vec3 velocity;       // m/s, prescribed translation while move_start <= t < move_end
+  double move_start = 0.0;  // s
+  double move_end = std::numeric_limits<double>::infinity();  // s
+  double remove_at = std::numeric_limits<double>::infinity(); // s, the wall stops existing at this time
+
+  bool active(double t) const { return t < remove_at; }
+  // Precomputes what wall_distance would otherwise recompute at every call.
+  void finish() {
+    if (kind == WallKind::rectangle) {
+      inv_u2 = 1.0 / norm2(u);
+      inv_v2 = 1.0 / norm2(v);
+    }
+  }
+  // Displacement since t = 0 (m) and current velocity (m/s).
+  Vec3 displacement(double t) const;
+  Vec3 velocity_at(double t) const;
+};
+
+// Closest point of a wall's surface (at displacement `shift`) to a point; returns the distance (m) and
+// the unit vector `n` from the point towards the wall. For a plane the distance is signed (negative
+// behind it). Used by contacts, insertion and scene checks.
+double wall_distance(const Wall& w, const Vec3& shift, const Vec3& p, Vec3* n_to_wall);
+
+}  // namespace pastemix::model

@@ -1,0 +1,249 @@
+// SPDX-License-Identifier: MIT
+// The step, in order (each stage timed into Profile):
+//
+//   1. integration:  v += dt/2 a(t);  omega likewise;  x += dt v            (velocity Verlet, first half)
+//   2. neighbor:     rebuild the Verlet pair list if some particle moved > skin/2 since the last build
+//   3. contacts:     one force per pair (law dispatched once, std::visit), then a per-particle gather
+//   4. walls:        per particle, in wall order, at the walls' positions at t + dt
+//   5. integration:  v += dt/2 a(t + dt);  omega likewise
+//
+// Velocity-dependent forces (dashpots, the tangential spring increment) use the half-step velocities, as
+// LIGGGHTS does; the scheme is second order for the conservative part. Rotation is integrated only when
+// the Plan allocated it. The constant-directional rolling torque (EDEM "standard") is not added to the
+// torque: its magnitude sum M = sum mu_r F_n R_i is applied in each half kick as a friction on omega that
+// can stop the spin but never reverse it (omega* = omega + h tau/I; |omega*| <= h M/I -> omega = 0, else
+// |omega| shrinks by h M/I). That is the explicit law's own torque whenever the spin survives the step,
+// and it removes the chatter at omega -> 0 that makes piles under the raw law never come to rest.
+//
+// The fluid pass of the later issue slots in as a per-particle force stage after the walls, restricted to
+// the particles inside the fluid region; it needs nothing from the stages above but x, v and radius.
+//
+// Every pass writes outputs indexed by the loop variable only (no atomics, no reductions into shared
+// sums), so the trajectory is bitwise identical for any thread count.
+#include "model/world.h"
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "base/error.h"
+#include "model/parallel.h"
+
+namespace pastemix::model {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct StageTimer {
+  double& slot;
+  Clock::time_point t0 = Clock::now();
+  ~StageTimer() { slot += std::chrono::duration<double>(Clock::now() - t0).count(); }
+};
+
+}  // namespace
+
+World::World(WorldConfig config, std::vector<Material> materials, LawTable laws, Particles particles,
+             std::vector<Wall> walls, int history_width)
+    : cfg_(config), materials_(std::move(materials)), laws_(std::move(laws)), p_(std::move(particles)),
+      walls_(std::move(walls)) {
+  pairs_.width = history_width;
+  // Wall lists: a skin of at least one largest diameter, so they are rebuilt far less often than pairs.
+  double r_max = 0.0;
+  for (double r : p_.radius) r_max = std::max(r_max, r);
+  wall_skin_ = std::max(cfg_.skin, 2.0 * r_max);
+  wall_contacts_.resize(p_.size(), static_cast<int>(walls_.size()), history_width);
+}
+
+void World::rebuild_neighbors() {
+  CandidatePairs c = build_pairs(p_.x, p_.radius, cfg_.skin);
+#ifdef PASTEMIX_VALIDATE
+  // Expensive check: the cell list must find exactly the brute-force pairs.
+  if (brute_force_pairs(p_.x, p_.radius, cfg_.skin).i.size() != c.i.size())
+    throw RuntimeFailure(fmt::format("neighbour list at t = {} s disagrees with brute force", t_));
+#endif
+  pairs_.rebuild(c, p_);
+  x_at_rebuild_ = p_.x;
+  ++profile_.rebuilds;
+}
+
+void World::rebuild_wall_lists() {
+  wall_contacts_.rebuild(walls_, p_, t_, wall_skin_);
+  x_at_wall_rebuild_ = p_.x;
+  t_at_wall_rebuild_ = t_;
+}
+
+void World::compute_forces() {
+  StepContext ctx{t_, cfg_.dt, static_cast<int>(materials_.size()), cfg_.rolling};
+  {
+    StageTimer timer{profile_.seconds[Profile::contact_forces]};
+    compute_pair_forces(laws_, ctx, p_, pairs_);
+  }
+  {
+    StageTimer timer{profile_.seconds[Profile::wall_forces]};
+    add_wall_forces(laws_, ctx, walls_, p_, wall_contacts_);
+  }
+}
+
+// Half kick of one particle: v += h a; omega += h tau / I, then the non-reversing rolling friction.
+inline void World::kick_one(long a, double h, bool rot, bool roll) {
+  p_.v[a] += (p_.f[a] * p_.inv_mass[a] + cfg_.gravity) * h;
+  if (rot) {
+    Vec3 w = p_.omega[a] + p_.torque[a] * (h * p_.inv_inertia[a]);
+    if (roll && p_.rolling_capacity[a] > 0.0) {
+      const double stop = h * p_.rolling_capacity[a] * p_.inv_inertia[a];  // rad/s the friction can remove
+      const double len = norm(w);
+      w = len <= stop ? Vec3{} : w * (1.0 - stop / len);
+    }
+    p_.omega[a] = w;
+  }
+}
+
+void World::kick(double h) {
+  const long n = static_cast<long>(p_.size());
+  const bool rot = p_.has_rotation;
+  const bool roll = cfg_.rolling == RollingLaw::constant_torque;
+#pragma omp parallel for schedule(static) if (n >= parallel_min_items)
+  for (long a = 0; a < n; ++a) kick_one(a, h, rot, roll);
+}
+
+// First half kick and drift in one loop (one fork/join less per step).
+World::Displacements World::kick_drift(double h) {
+  const long n = static_cast<long>(p_.size());
+  const bool rot = p_.has_rotation;
+  const bool roll = cfg_.rolling == RollingLaw::constant_torque;
+  const double dt = cfg_.dt;
+  double max_d2 = 0.0, max_w2 = 0.0;
+  long bad = std::numeric_limits<long>::max();
+  const Vec3 lo = cfg_.domain_min, hi = cfg_.domain_max;
+#pragma omp parallel for schedule(static) reduction(max : max_d2, max_w2) reduction(min : bad) if (n >= parallel_min_items)
+  for (long a = 0; a < n; ++a) {
+    kick_one(a, h, rot, roll);
+    p_.x[a] += p_.v[a] * dt;
+    const Vec3& x = p_.x[a];
+    // NaN fails every comparison, so "not inside" also catches it.
+    if (!(x.x >= lo.x && x.x <= hi.x && x.y >= lo.y && x.y <= hi.y && x.z >= lo.z && x.z <= hi.z)) bad = std::min(bad, a);
+    max_d2 = std::max(max_d2, norm2(x - x_at_rebuild_[a]));
+    max_w2 = std::max(max_w2, norm2(x - x_at_wall_rebuild_[a]));
+  }
+  if (bad != std::numeric_limits<long>::max() && bad_index_ < 0) bad_index_ = bad;
+  return {max_d2, max_w2};
+}
+
+void World::step() {
+  if (!started_) {
+    StageTimer timer{profile_.seconds[Profile::neighbor]};
+    rebuild_neighbors();
+    rebuild_wall_lists();
+  }
+  if (!started_) {
+    compute_forces();
+    started_ = true;
+  }
+  const double h = 0.5 * cfg_.dt;
+  Displacements moved;
+  {
+    StageTimer timer{profile_.seconds[Profile::integration]};
+    moved = kick_drift(h);
+  }
+  t_ += cfg_.dt;
+  ++steps_;
+  if (bad_index_ >= 0) check();
+  // The pair list stays valid while no particle has moved more than skin/2 since its build. The wall
+  // candidate lists use their own, larger skin (walls are few; rebuilding them costs a distance per
+  // particle and wall) and stay valid while particle + wall motion since their build is below half of
+  // it; a wall's motion is |v| (t - t_build); a removed wall needs no rebuild (it is skipped when inactive).
+  if (moved.pairs2 > 0.25 * cfg_.skin * cfg_.skin) {
+    StageTimer timer{profile_.seconds[Profile::neighbor]};
+    rebuild_neighbors();
+  }
+  double wall_move = 0.0;
+  for (const Wall& wall : walls_)
+    wall_move = std::max(wall_move, norm(wall.displacement(t_) - wall.displacement(t_at_wall_rebuild_)));
+  if (std::sqrt(moved.walls2) + wall_move > 0.5 * wall_skin_) {
+    StageTimer timer{profile_.seconds[Profile::neighbor]};
+    rebuild_wall_lists();
+  }
+  compute_forces();
+  {
+    StageTimer timer{profile_.seconds[Profile::integration]};
+    kick(h);
+  }
+}
+
+void World::check() const {
+  const std::size_t n = p_.size();
+  auto fail = [&](std::size_t a, const std::string& cause) {
+    const Vec3& x = p_.x[a];
+    const Vec3& v = p_.v[a];
+    throw RuntimeFailure(fmt::format(
+        "particle id {} at t = {:.6g} s (step {}): {}; position ({:.6g}, {:.6g}, {:.6g}) m, velocity "
+        "({:.6g}, {:.6g}, {:.6g}) m/s",
+        p_.id[a], t_, steps_, cause, x.x, x.y, x.z, v.x, v.y, v.z));
+  };
+  const Vec3 lo = cfg_.domain_min, hi = cfg_.domain_max;
+  for (std::size_t a = 0; a < n; ++a) {
+    const Vec3& x = p_.x[a];
+    const Vec3& v = p_.v[a];
+    if (!std::isfinite(x.x + x.y + x.z + v.x + v.y + v.z)) fail(a, "non-finite position or velocity (NaN/inf)");
+    if (p_.has_rotation && !std::isfinite(p_.omega[a].x + p_.omega[a].y + p_.omega[a].z))
+      fail(a, "non-finite angular velocity");
+    if (!(x.x >= lo.x && x.x <= hi.x && x.y >= lo.y && x.y <= hi.y && x.z >= lo.z && x.z <= hi.z))
+      fail(a, fmt::format("left the domain [{:.4g}, {:.4g}] x [{:.4g}, {:.4g}] x [{:.4g}, {:.4g}] m", lo.x,
+                          hi.x, lo.y, hi.y, lo.z, hi.z));
+  }
+  if (cfg_.kinetic_limit > 0.0) {
+    double ke = 0.0, ke_max = -1.0;
+    std::size_t worst = 0;
+    for (std::size_t a = 0; a < n; ++a) {
+      const double e = 0.5 * p_.mass[a] * norm2(p_.v[a]);
+      ke += e;
+      if (e > ke_max) {
+        ke_max = e;
+        worst = a;
+      }
+    }
+    if (ke > cfg_.kinetic_limit)
+      fail(worst, fmt::format("kinetic-energy blow-up: total {:.6g} J exceeds the limit {:.6g} J (the "
+                              "initial energy plus the largest fall in the domain); time step too large for "
+                              "the stiffness?",
+                              ke, cfg_.kinetic_limit));
+  }
+}
+
+Energies World::energies() const {
+  Energies e;
+  const std::size_t n = p_.size();
+  for (std::size_t a = 0; a < n; ++a) {
+    e.kinetic += 0.5 * p_.mass[a] * norm2(p_.v[a]);
+    if (p_.has_rotation) e.rotational += 0.5 * norm2(p_.omega[a]) / p_.inv_inertia[a];
+    e.potential -= p_.mass[a] * dot(cfg_.gravity, p_.x[a]);
+  }
+  const std::size_t nm = materials_.size();
+  auto estar = [&](int ma, int mb) {
+    return std::visit([&](const auto& table) { return table[ma * nm + mb].E_star; }, laws_);
+  };
+  for (std::size_t k = 0; k < pairs_.size(); ++k) {
+    const auto a = pairs_.i[k], b = pairs_.j[k];
+    const double rsum = p_.radius[a] + p_.radius[b];
+    const double d = rsum - norm(p_.x[b] - p_.x[a]);
+    if (d <= 0.0) continue;
+    ++e.pair_contacts;
+    const double rs = p_.radius[a] * p_.radius[b] / rsum;
+    e.elastic += 8.0 / 15.0 * estar(p_.material[a], p_.material[b]) * std::sqrt(rs) * std::pow(d, 2.5);
+  }
+  for (std::size_t a = 0; a < n; ++a)
+    for (const Wall& w : walls_) {
+      if (!w.active(t_)) continue;
+      Vec3 nn;
+      const double d = p_.radius[a] - wall_distance(w, w.displacement(t_), p_.x[a], &nn);
+      if (d <= 0.0) continue;
+      ++e.wall_contacts;
+      e.elastic += 8.0 / 15.0 * estar(p_.material[a], w.material) * std::sqrt(p_.radius[a]) * std::pow(d, 2.5);
+    }
+  return e;
+}
+
+}  // namespace pastemix::model
