@@ -1,0 +1,97 @@
+#!/usr/bin/env bash
+# pastemix vs LIGGGHTS 3.8 benchmark: same scenes, same initial particles, same dt and skin.
+# Prints particle-steps/s for both codes and their ratio, and writes bench/results/<UTC date>.csv.
+#
+#   bench/run.sh [--scenes "pour bed"] [--threads "1 2"] [--repeats 3] [--steps-pour 2000]
+#                [--steps-bed 2000] [--rolling cdt|epsd2] [--liggghts-only] [--resettle]
+#
+# Environment: PASTEMIX=path/to/pastemix (default build/pastemix, built with scripts/build.sh if missing).
+# Installs the Debian package liggghts (and its Open MPI launcher) when the liggghts binary is missing.
+set -euo pipefail
+BENCH="$(cd "$(dirname "$0")" && pwd)"
+ROOT="$(cd "$BENCH/.." && pwd)"
+PY=/usr/bin/python3   # has numpy; the python3 first on PATH may not
+
+SCENES="pour bed"; THREADS="1 2"; REPEATS=3; STEPS_POUR=2000; STEPS_BED=2000; ROLLING=cdt
+LIGGGHTS_ONLY=0; RESETTLE=0
+while [[ $# -gt 0 ]]; do
+  case "$1" in
+    --scenes) SCENES="$2"; shift 2 ;;
+    --threads) THREADS="$2"; shift 2 ;;
+    --repeats) REPEATS="$2"; shift 2 ;;
+    --steps-pour) STEPS_POUR="$2"; shift 2 ;;
+    --steps-bed) STEPS_BED="$2"; shift 2 ;;
+    --rolling) ROLLING="$2"; shift 2 ;;
+    --liggghts-only) LIGGGHTS_ONLY=1; shift ;;
+    --resettle) RESETTLE=1; shift ;;
+    -h|--help) sed -n 2,10p "$0"; exit 0 ;;
+    *) echo "run.sh: unknown option $1" >&2; exit 2 ;;
+  esac
+done
+case "$ROLLING" in cdt|epsd2) ;; *) echo "run.sh: --rolling must be cdt or epsd2" >&2; exit 2 ;; esac
+
+# --- LIGGGHTS and its MPI launcher (Debian: /usr/bin/liggghts, mpirun from openmpi-bin) ---------------
+if ! command -v liggghts >/dev/null || ! command -v mpirun >/dev/null; then
+  echo "run.sh: installing the Debian package liggghts (LIGGGHTS-PUBLIC 3.8.0) and Open MPI" >&2
+  SUDO=""; [[ $EUID -ne 0 ]] && SUDO=sudo
+  $SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends liggghts openmpi-bin >&2
+fi
+MPIRUN=(mpirun --bind-to none)   # no pinning: pastemix's OpenMP threads are not pinned either
+[[ $EUID -eq 0 ]] && MPIRUN+=(--allow-run-as-root)
+
+# --- pastemix ------------------------------------------------------------------------------------------
+PASTEMIX="${PASTEMIX:-$ROOT/build/pastemix}"
+if [[ $LIGGGHTS_ONLY -eq 0 && ! -x "$PASTEMIX" ]]; then
+  echo "run.sh: building pastemix (scripts/build.sh)" >&2
+  "$ROOT/scripts/build.sh" >&2
+fi
+
+# --- initial states, generated once and read by both codes -------------------------------------------
+STAMP="$(date -u +%Y-%m-%dT%H%M%SZ)"
+WORK="$BENCH/work/$STAMP"
+STATES="$BENCH/work/states"
+mkdir -p "$WORK" "$STATES" "$BENCH/results"
+"$PY" "$BENCH/tools/make_pour.py" "$STATES/pour" >&2
+if [[ $RESETTLE -eq 1 || ! -f "$BENCH/data/bed.csv.gz" ]]; then
+  echo "run.sh: settling the bed with LIGGGHTS (2 ranks; minutes)" >&2
+  (cd "$WORK" && "${MPIRUN[@]}" -np 2 liggghts -in "$BENCH/liggghts/in.settle" -log settle.log \
+      -var inc "$BENCH/liggghts" -var data "$STATES/pour.data" -var rolling "$ROLLING" \
+      -var out "$WORK/bed.dump" -var ke_stop 1e-5 -var chunk 2000 >/dev/null)
+  grep SETTLED "$WORK/settle.log" >&2
+  "$PY" "$BENCH/tools/dump_to_state.py" "$WORK/bed.dump" "$STATES/bed" \
+      "bed: pour settled by LIGGGHTS 3.8 (in.settle, rolling $ROLLING), released at rest" >&2
+  gzip -9 -n -c "$STATES/bed.csv" > "$BENCH/data/bed.csv.gz"
+else
+  "$PY" "$BENCH/tools/csv_to_state.py" "$BENCH/data/bed.csv.gz" "$STATES/bed" >&2
+fi
+
+steps_of() { [[ $1 == pour ]] && echo "$STEPS_POUR" || echo "$STEPS_BED"; }
+
+run_liggghts() {  # scene threads repeat
+  local log="$WORK/liggghts_$1_t$2_r$3.log"
+  (cd "$WORK" && "${MPIRUN[@]}" -np "$2" liggghts -in "$BENCH/liggghts/in.$1" -log none \
+      -var inc "$BENCH/liggghts" -var data "$STATES/$1.data" -var rolling "$ROLLING" \
+      -var steps "$(steps_of "$1")") > "$log" 2>&1 || { echo "LIGGGHTS failed, see $log" >&2; exit 1; }
+  grep -m1 "Loop time" "$log" >&2
+}
+
+run_pastemix() {  # scene threads repeat
+  local log="$WORK/pastemix_$1_t$2_r$3.log"
+  (cd "$WORK" && OMP_NUM_THREADS="$2" "$PASTEMIX" run "$BENCH/scenes/$1.toml" \
+      --particles "$STATES/$1.csv" --steps "$(steps_of "$1")" --output "$WORK/pastemix_$1_t$2.h5") \
+      > "$log" 2>&1 || { echo "pastemix failed, see $log" >&2; exit 1; }
+  grep -m1 "loop:" "$log" >&2
+}
+
+# Interleave the two codes (L P L P ...) so slow phases of a noisy machine hit both alike.
+for scene in $SCENES; do
+  for t in $THREADS; do
+    for ((r = 1; r <= REPEATS; r++)); do
+      echo "== $scene, $t thread(s), repeat $r/$REPEATS" >&2
+      run_liggghts "$scene" "$t" "$r"
+      [[ $LIGGGHTS_ONLY -eq 1 ]] || run_pastemix "$scene" "$t" "$r"
+    done
+  done
+done
+
+"$PY" "$BENCH/tools/report.py" "$WORK" "$BENCH/results/$STAMP.csv" | tee "$WORK/table.txt"
