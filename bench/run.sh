@@ -3,7 +3,8 @@
 # Prints particle-steps/s for both codes and their ratio, and writes bench/results/<UTC date>.csv.
 #
 #   bench/run.sh [--scenes "pour bed"] [--threads "1 2"] [--repeats 3] [--steps-pour 2000]
-#                [--steps-bed 2000] [--rolling cdt|epsd2] [--liggghts-only] [--resettle]
+#                [--steps-bed 2000] [--dt 1e-5] [--skin 5e-4] [--rolling cdt|epsd2]
+#                [--liggghts-only] [--resettle]
 #
 # Environment: PASTEMIX=path/to/pastemix (default build/pastemix, built with scripts/build.sh if missing).
 # Installs the Debian package liggghts (and its Open MPI launcher) when the liggghts binary is missing.
@@ -13,6 +14,7 @@ ROOT="$(cd "$BENCH/.." && pwd)"
 PY=/usr/bin/python3   # has numpy; the python3 first on PATH may not
 
 SCENES="pour bed"; THREADS="1 2"; REPEATS=3; STEPS_POUR=2000; STEPS_BED=2000; ROLLING=cdt
+DT=1e-5; SKIN=5e-4   # s, m: the same in both codes
 LIGGGHTS_ONLY=0; RESETTLE=0
 while [[ $# -gt 0 ]]; do
   case "$1" in
@@ -22,9 +24,11 @@ while [[ $# -gt 0 ]]; do
     --steps-pour) STEPS_POUR="$2"; shift 2 ;;
     --steps-bed) STEPS_BED="$2"; shift 2 ;;
     --rolling) ROLLING="$2"; shift 2 ;;
+    --dt) DT="$2"; shift 2 ;;
+    --skin) SKIN="$2"; shift 2 ;;
     --liggghts-only) LIGGGHTS_ONLY=1; shift ;;
     --resettle) RESETTLE=1; shift ;;
-    -h|--help) sed -n 2,10p "$0"; exit 0 ;;
+    -h|--help) sed -n 2,11p "$0"; exit 0 ;;
     *) echo "run.sh: unknown option $1" >&2; exit 2 ;;
   esac
 done
@@ -56,7 +60,7 @@ if [[ $RESETTLE -eq 1 || ! -f "$BENCH/data/bed.csv.gz" ]]; then
   echo "run.sh: settling the bed with LIGGGHTS (2 ranks; minutes)" >&2
   (cd "$WORK" && "${MPIRUN[@]}" -np 2 liggghts -in "$BENCH/liggghts/in.settle" -log settle.log \
       -var inc "$BENCH/liggghts" -var data "$STATES/pour.data" -var rolling "$ROLLING" \
-      -var out "$WORK/bed.dump" -var ke_stop 1e-5 -var chunk 2000 >/dev/null)
+      -var dt "$DT" -var skin "$SKIN" -var out "$WORK/bed.dump" -var ke_stop 1e-5 -var chunk 2000 >/dev/null)
   grep SETTLED "$WORK/settle.log" >&2
   "$PY" "$BENCH/tools/dump_to_state.py" "$WORK/bed.dump" "$STATES/bed" \
       "bed: pour settled by LIGGGHTS 3.8 (in.settle, rolling $ROLLING), released at rest" >&2
@@ -71,16 +75,26 @@ run_liggghts() {  # scene threads repeat
   local log="$WORK/liggghts_$1_t$2_r$3.log"
   (cd "$WORK" && "${MPIRUN[@]}" -np "$2" liggghts -in "$BENCH/liggghts/in.$1" -log none \
       -var inc "$BENCH/liggghts" -var data "$STATES/$1.data" -var rolling "$ROLLING" \
-      -var steps "$(steps_of "$1")") > "$log" 2>&1 || { echo "LIGGGHTS failed, see $log" >&2; exit 1; }
+      -var dt "$DT" -var skin "$SKIN" -var steps "$(steps_of "$1")") > "$log" 2>&1 || { echo "LIGGGHTS failed, see $log" >&2; exit 1; }
   grep -m1 "Loop time" "$log" >&2
 }
 
+if [[ $LIGGGHTS_ONLY -eq 0 ]]; then
+  # The pastemix scenes: bench/scenes/<scene>.toml + the same particles, dt, skin and rolling law.
+  for scene in $SCENES; do
+    "$PY" "$BENCH/tools/make_scene.py" "$BENCH/scenes/$scene.toml" "$STATES/$scene.csv" "$WORK/$scene.toml" \
+        --dt "$DT" --steps "$(steps_of "$scene")" --skin "$SKIN" --rolling "$ROLLING"
+  done
+fi
+
 run_pastemix() {  # scene threads repeat
   local log="$WORK/pastemix_$1_t$2_r$3.log"
-  (cd "$WORK" && OMP_NUM_THREADS="$2" "$PASTEMIX" run "$BENCH/scenes/$1.toml" \
-      --particles "$STATES/$1.csv" --steps "$(steps_of "$1")" --output "$WORK/pastemix_$1_t$2.h5") \
-      > "$log" 2>&1 || { echo "pastemix failed, see $log" >&2; exit 1; }
-  grep -m1 "loop:" "$log" >&2
+  mkdir -p "$WORK/out_$1_t$2_r$3"
+  (cd "$WORK" && OMP_NUM_THREADS="$2" "$PASTEMIX" run "$WORK/$1.toml" --threads "$2" --quiet \
+      --out "$WORK/out_$1_t$2_r$3") > "$log" 2>&1 || { echo "pastemix failed, see $log" >&2; exit 1; }
+  # Keep the first repeat's output (report.py compares its final state with LIGGGHTS'); drop the rest.
+  [[ $3 -eq 1 ]] || rm -rf "$WORK/out_$1_t$2_r$3"
+  grep -m1 "total wall" "$log" >&2
 }
 
 # Interleave the two codes (L P L P ...) so slow phases of a noisy machine hit both alike.

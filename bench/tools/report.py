@@ -18,6 +18,7 @@ import time
 LIGGGHTS_LOOP = re.compile(
     r"Loop time of ([0-9.eE+-]+) on (\d+) procs for (\d+) steps with (\d+) atoms")
 LIGGGHTS_STAGE = re.compile(r"^(Pair|Neigh|Comm|Outpt|Modfy|Other) +time \(%\) = ([0-9.eE+-]+) \(([0-9.eE+-]+)\)")
+LIGGGHTS_BUILDS = re.compile(r"Neighbor list builds = (\d+)")
 LOGNAME = re.compile(r"(liggghts|pastemix)_(\w+?)_t(\d+)_r(\d+)\.log$")
 
 
@@ -34,27 +35,69 @@ def parse_liggghts(text):
             stages[s.group(1)] = float(s.group(2))
         elif line.startswith("Nlocal"):
             break
+    b = LIGGGHTS_BUILDS.search(text, m.end())
     return dict(loop_s=float(m.group(1)), steps=int(m.group(3)), particles=int(m.group(4)),
-                stages=stages, line=m.group(0))
+                stages=stages, line=m.group(0), rebuilds=int(b.group(1)) if b else None,
+                final=liggghts_final_state(text[:m.start()]))
 
 
-# pastemix prints (model/world, on stderr at the end of `pastemix run`):
-#   loop: <steps> steps, <particles> particles, <seconds> s
-#   stage <name>: <seconds> s (<percent> %)
-PASTEMIX_LOOP = re.compile(r"loop: (\d+) steps, (\d+) particles, ([0-9.eE+-]+) s")
-PASTEMIX_STAGE = re.compile(r"^stage ([\w/-]+): ([0-9.eE+-]+) s", re.M)
+def liggghts_final_state(text):
+    """The last thermo row before the loop-time line: (KE, rotational KE, z_com, pair contacts)."""
+    rows = [l.split() for l in text.splitlines()]
+    head = max((k for k, r in enumerate(rows) if r[:2] == ["Step", "Atoms"]), default=None)
+    if head is None:
+        return None
+    data = [r for r in rows[head + 1:] if len(r) == 6 and r[0].isdigit()]
+    if not data:
+        return None
+    _, _, ke, rke, zcom, npair = data[-1]
+    return dict(ke=float(ke), rke=float(rke), zcom=float(zcom), npair=int(float(npair)))
+
+
+# pastemix prints at the end of `pastemix run` (model/run.cpp, format_profile):
+#   stage profile (2000 steps, 12960 particles, 95 neighbour rebuilds):
+#     neighbor            0.412 s   12.3 %
+#     ...
+#     output              0.020 s    0.6 %
+#     total wall          3.350 s  (597 steps/s, 7.74e+06 particle-steps/s)
+# "total wall" covers the whole step loop including the HDF5 snapshots at t = 0 and at the end; the loop
+# time used here is total wall minus the output stage (LIGGGHTS writes no snapshots in its loop).
+PASTEMIX_HEAD = re.compile(r"stage profile \((\d+) steps, (\d+) particles, (\d+) neighbour rebuilds\)")
+PASTEMIX_STAGE = re.compile(r"^ +([a-z_]+) +([0-9.eE+-]+) s +([0-9.]+) %", re.M)
+PASTEMIX_TOTAL = re.compile(r"^ +total wall +([0-9.eE+-]+) s", re.M)
 
 
 def parse_pastemix(text):
-    m = PASTEMIX_LOOP.search(text)
-    if not m:
+    h, t = PASTEMIX_HEAD.search(text), PASTEMIX_TOTAL.search(text)
+    if not (h and t):
         return None
-    stages = {s.group(1): float(s.group(2)) for s in PASTEMIX_STAGE.finditer(text)}
-    return dict(loop_s=float(m.group(3)), steps=int(m.group(1)), particles=int(m.group(2)),
-                stages=stages, line=m.group(0))
+    stages = {s.group(1): float(s.group(2)) for s in PASTEMIX_STAGE.finditer(text[h.end():])}
+    loop = float(t.group(1)) - stages.get("output", 0.0)
+    line = "%s; total wall %s s, output %.3g s" % (h.group(0), t.group(1), stages.get("output", 0.0))
+    stages.pop("output", None)
+    stages["other"] = max(0.0, loop - sum(stages.values()))  # diagnostics, loop overhead
+    return dict(loop_s=loop, steps=int(h.group(1)), particles=int(h.group(2)), stages=stages, line=line,
+                rebuilds=int(h.group(3)), final=None)
 
 
-def collect(work):
+def pastemix_final_state(h5path):
+    """(KE, rotational KE, z_com, pair contacts) at the end of a pastemix run, from its HDF5 output."""
+    try:
+        import h5py
+        import numpy as np
+        with h5py.File(h5path, "r") as f:
+            t = f["timeseries"]
+            last = sorted(k for k in f["snapshots"] if k != "time")[-1]
+            snap = f["snapshots"][last]
+            r, z = snap["radius"][:], snap["position"][:, 2]
+            return dict(ke=float(t["kinetic"][-1]), rke=float(t["rotational"][-1]),
+                        zcom=float((r**3 * z).sum() / (r**3).sum()), npair=int(t["pair_contacts"][-1]))
+    except Exception as e:  # the cross-check is informative; a missing file must not hide the timings
+        print("report: no final state from %s (%s)" % (h5path, e), file=sys.stderr)
+        return None
+
+
+def collect(work, finals):
     best = {}
     for path in sorted(glob.glob(os.path.join(work, "*.log"))):
         n = LOGNAME.search(os.path.basename(path))
@@ -67,7 +110,12 @@ def collect(work):
         if r is None:
             print("report: no loop time in %s" % path, file=sys.stderr)
             continue
+        if code == "pastemix":
+            h5 = glob.glob(os.path.join(work, "out_%s_t%d_r%s" % (scene, threads, n.group(4)), "*.h5"))
+            r["final"] = pastemix_final_state(h5[0]) if h5 else None
         key = (code, scene, threads)
+        if r["final"] is not None:
+            finals.setdefault(key, r["final"])  # the first repeat that has one
         r["runs"] = best.get(key, {}).get("runs", 0) + 1
         r["log"] = os.path.basename(path)
         if key not in best or r["loop_s"] < best[key]["loop_s"]:
@@ -88,7 +136,8 @@ def stage_text(r):
 
 def main():
     work, csv_out = sys.argv[1:3]
-    best = collect(work)
+    finals = {}
+    best = collect(work, finals)
     scenes = sorted({k[1] for k in best}, key=lambda s: ["pour", "bed"].index(s) if s in ("pour", "bed") else 9)
     threads = sorted({k[2] for k in best})
     stamp = time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())
@@ -115,6 +164,14 @@ def main():
     for (code, s, t), r in sorted(best.items(), key=lambda kv: (kv[0][1], kv[0][2], kv[0][0])):
         print("  %-8s %-5s t%d: %s" % (code, s, t, stage_text(r)))
         print("           %s" % r["line"])
+    print("\nsame scene? state at the end of the segment (first repeat), and neighbour-list rebuilds:")
+    print("  %-8s %-5s %3s %12s %12s %10s %8s %9s" % ("code", "scene", "thr", "KE J", "rot KE J", "z_com m",
+                                                   "contacts", "rebuilds"))
+    for (code, s, t), r in sorted(best.items(), key=lambda kv: (kv[0][1], kv[0][2], kv[0][0])):
+        fin = finals.get((code, s, t))
+        print("  %-8s %-5s %3d %12s %12s %10s %8s %9s" % (
+            code, s, t, "%.5g" % fin["ke"] if fin else "-", "%.4g" % fin["rke"] if fin else "-",
+            "%.6f" % fin["zcom"] if fin else "-", fin["npair"] if fin else "-", r.get("rebuilds")))
     with open(csv_out, "w") as f:
         f.write("date_utc,scene,threads,code,particles,steps,loop_s,runs,mps,ratio_pastemix_over_liggghts,"
                 "stages,log\n")
