@@ -3,8 +3,8 @@
 # Prints particle-steps/s for both codes and their ratio, and writes bench/results/<UTC date>.csv.
 #
 #   bench/run.sh [--scenes "pour bed"] [--threads "1 2"] [--repeats 3] [--steps-pour 2000]
-#                [--steps-bed 2000] [--dt 1e-5] [--skin 5e-4] [--rolling cdt|epsd2]
-#                [--liggghts-only] [--resettle]
+#                [--steps-bed 2000] [--dt 1e-5] [--skin 5e-4] [--rolling cdt|epsd2|off]
+#                [--wait passive|active] [--liggghts-only] [--resettle]
 #
 # Environment: PASTEMIX=path/to/pastemix (default build/pastemix, built with scripts/build.sh if missing).
 # Installs the Debian package liggghts (and its Open MPI launcher) when the liggghts binary is missing.
@@ -16,6 +16,10 @@ PY=/usr/bin/python3   # has numpy; the python3 first on PATH may not
 SCENES="pour bed"; THREADS="1 2"; REPEATS=3; STEPS_POUR=2000; STEPS_BED=2000; ROLLING=cdt
 DT=1e-5; SKIN=5e-4   # s, m: the same in both codes
 LIGGGHTS_ONLY=0; RESETTLE=0
+# How idle threads/ranks wait. passive (default): OpenMP threads sleep (OMP_WAIT_POLICY=passive) and MPI ranks
+# yield (mpi_yield_when_idle 1). On a shared, oversubscribed machine spinning waiters steal the cores the
+# workers need and both codes slow down 2-4x at 2 threads; active = both spin, for a dedicated machine.
+WAIT=passive
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --scenes) SCENES="$2"; shift 2 ;;
@@ -26,13 +30,15 @@ while [[ $# -gt 0 ]]; do
     --rolling) ROLLING="$2"; shift 2 ;;
     --dt) DT="$2"; shift 2 ;;
     --skin) SKIN="$2"; shift 2 ;;
+    --wait) WAIT="$2"; shift 2 ;;
     --liggghts-only) LIGGGHTS_ONLY=1; shift ;;
     --resettle) RESETTLE=1; shift ;;
-    -h|--help) sed -n 2,11p "$0"; exit 0 ;;
+    -h|--help) sed -n 2,12p "$0"; exit 0 ;;
     *) echo "run.sh: unknown option $1" >&2; exit 2 ;;
   esac
 done
-case "$ROLLING" in cdt|epsd2) ;; *) echo "run.sh: --rolling must be cdt or epsd2" >&2; exit 2 ;; esac
+case "$WAIT" in passive|active) ;; *) echo "run.sh: --wait must be passive or active" >&2; exit 2 ;; esac
+case "$ROLLING" in cdt|epsd2|off) ;; *) echo "run.sh: --rolling must be cdt, epsd2 or off" >&2; exit 2 ;; esac
 
 # --- LIGGGHTS and its MPI launcher (Debian: /usr/bin/liggghts, mpirun from openmpi-bin) ---------------
 if ! command -v liggghts >/dev/null || ! command -v mpirun >/dev/null; then
@@ -41,6 +47,8 @@ if ! command -v liggghts >/dev/null || ! command -v mpirun >/dev/null; then
   $SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends liggghts openmpi-bin >&2
 fi
 MPIRUN=(mpirun --bind-to none)   # no pinning: pastemix's OpenMP threads are not pinned either
+if [[ $WAIT == passive ]]; then MPIRUN+=(--mca mpi_yield_when_idle 1); else MPIRUN+=(--mca mpi_yield_when_idle 0); fi
+export OMP_WAIT_POLICY="$WAIT"
 [[ $EUID -eq 0 ]] && MPIRUN+=(--allow-run-as-root)
 
 # --- pastemix ------------------------------------------------------------------------------------------
@@ -108,4 +116,7 @@ for scene in $SCENES; do
   done
 done
 
-"$PY" "$BENCH/tools/report.py" "$WORK" "$BENCH/results/$STAMP.csv" | tee "$WORK/table.txt"
+export BENCH_SETTINGS="dt $DT s; skin $SKIN m; rolling $ROLLING; wait $WAIT; steps pour $STEPS_POUR bed $STEPS_BED;\
+ repeats $REPEATS; pastemix $PASTEMIX; liggghts $(command -v liggghts) (Debian $(dpkg-query -W -f '${Version}' liggghts 2>/dev/null))"
+echo "settings: $BENCH_SETTINGS" | tee "$WORK/table.txt"
+"$PY" "$BENCH/tools/report.py" "$WORK" "$BENCH/results/$STAMP.csv" | tee -a "$WORK/table.txt"

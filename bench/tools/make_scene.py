@@ -4,14 +4,14 @@
 The template's time_step, end_time, [neighbor] skin, [output] intervals and [contact] rolling are set
 from the arguments; every sphere of STATE.csv (id,diameter,x,y,z,vx,vy,vz in SI) becomes a [[particle]]
 of material "rock", in id order (so pastemix's dense index k is LIGGGHTS atom id k+1).
-Usage: make_scene.py TEMPLATE.toml STATE.csv OUT.toml --dt S --steps N --skin M --rolling cdt|epsd2
+Usage: make_scene.py TEMPLATE.toml STATE.csv OUT.toml --dt S --steps N --skin M --rolling cdt|epsd2|off
 """
 import argparse
 import re
 
 import numpy as np
 
-ROLLING = {"cdt": "constant_torque", "epsd2": "elastic_plastic"}
+ROLLING = {"cdt": "constant_torque", "epsd2": "elastic_plastic", "off": "none"}
 
 
 def set_key(text, key, value, count=1):
@@ -42,6 +42,9 @@ def main():
     if a.rolling == "epsd2":
         # LIGGGHTS epsd2 has no rolling dashpot ("the viscous damping torque M_rd is disabled").
         text = text.replace('rolling = "elastic_plastic"', 'rolling = "elastic_plastic"\nrolling_damping = 0.0')
+    if a.rolling == "off":
+        # No rolling resistance (LIGGGHTS "rolling_friction off"); pastemix refuses a coefficient without a law.
+        text = set_key(text, "rolling_friction", "0.0", count=text.count("\nrolling_friction = "))
     s = np.loadtxt(a.state, delimiter=",", skiprows=1, ndmin=2)
     out = [text, "\n# %d spheres from %s\n" % (len(s), a.state)]
     for row in s[np.argsort(s[:, 0])]:

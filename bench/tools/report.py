@@ -8,6 +8,7 @@ particle-steps/s = particles x steps / loop time, where loop time is the wall-cl
 loop only (LIGGGHTS: its "Loop time" line; pastemix: its own loop timer), setup and I/O excluded.
 Usage: report.py WORK CSV_OUT
 """
+import csv
 import glob
 import os
 import re
@@ -172,11 +173,12 @@ def main():
         print("  %-8s %-5s %3d %12s %12s %10s %8s %9s" % (
             code, s, t, "%.5g" % fin["ke"] if fin else "-", "%.4g" % fin["rke"] if fin else "-",
             "%.6f" % fin["zcom"] if fin else "-", fin["npair"] if fin else "-", r.get("rebuilds")))
-    with open(csv_out, "w") as f:
-        f.write("date_utc,scene,threads,code,particles,steps,loop_s,runs,mps,ratio_pastemix_over_liggghts,"
-                "stages,log\n")
+    with open(csv_out, "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["date_utc", "scene", "threads", "code", "particles", "steps", "loop_s", "runs", "mps",
+                    "ratio_pastemix_over_liggghts", "stages", "log", "load_avg_1min", "settings"])
         for row in rows:
-            f.write(",".join('"%s"' % c if isinstance(c, str) and " " in c else str(c) for c in row) + "\n")
+            w.writerow(row + ["%.1f" % load[0], os.environ.get("BENCH_SETTINGS", "")])
     print("\nwrote %s" % csv_out)
 
 
