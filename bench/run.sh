@@ -79,39 +79,48 @@ fi
 
 steps_of() { [[ $1 == pour ]] && echo "$STEPS_POUR" || echo "$STEPS_BED"; }
 
-run_liggghts() {  # scene threads repeat
-  local log="$WORK/liggghts_$1_t$2_r$3.log"
-  (cd "$WORK" && "${MPIRUN[@]}" -np "$2" liggghts -in "$BENCH/liggghts/in.$1" -log none \
-      -var inc "$BENCH/liggghts" -var data "$STATES/$1.data" -var rolling "$ROLLING" \
-      -var dt "$DT" -var skin "$SKIN" -var steps "$(steps_of "$1")") > "$log" 2>&1 || { echo "LIGGGHTS failed, see $log" >&2; exit 1; }
-  grep -m1 "Loop time" "$log" >&2
+CPUTIME=("$PY" "$BENCH/tools/cputime.py")
+
+run_liggghts() {  # scene threads tag steps   (tag: r<repeat>, or "setup" for the 1-step CPU baseline)
+  local log="$WORK/liggghts_$1_t$2_$3.log"
+  (cd "$WORK" && "${CPUTIME[@]}" "$log.cpu" -- "${MPIRUN[@]}" -np "$2" liggghts -in "$BENCH/liggghts/in.$1" \
+      -log none -var inc "$BENCH/liggghts" -var data "$STATES/$1.data" -var rolling "$ROLLING" \
+      -var dt "$DT" -var skin "$SKIN" -var steps "$4") > "$log" 2>&1 || { echo "LIGGGHTS failed, see $log" >&2; exit 1; }
+  [[ $3 == setup ]] || grep -m1 "Loop time" "$log" >&2
 }
 
 if [[ $LIGGGHTS_ONLY -eq 0 ]]; then
-  # The pastemix scenes: bench/scenes/<scene>.toml + the same particles, dt, skin and rolling law.
+  # The pastemix scenes: bench/scenes/<scene>.toml + the same particles, dt, skin and rolling law; and a
+  # 1-step copy for the CPU-time baseline (setup: TOML parsing, overlap checks, output files).
   for scene in $SCENES; do
-    "$PY" "$BENCH/tools/make_scene.py" "$BENCH/scenes/$scene.toml" "$STATES/$scene.csv" "$WORK/$scene.toml" \
-        --dt "$DT" --steps "$(steps_of "$scene")" --skin "$SKIN" --rolling "$ROLLING"
+    for tag in run setup; do
+      steps=$(steps_of "$scene"); [[ $tag == setup ]] && steps=1
+      "$PY" "$BENCH/tools/make_scene.py" "$BENCH/scenes/$scene.toml" "$STATES/$scene.csv" \
+          "$WORK/${scene}_$tag.toml" --dt "$DT" --steps "$steps" --skin "$SKIN" --rolling "$ROLLING"
+    done
   done
 fi
 
-run_pastemix() {  # scene threads repeat
-  local log="$WORK/pastemix_$1_t$2_r$3.log"
-  mkdir -p "$WORK/out_$1_t$2_r$3"
-  (cd "$WORK" && OMP_NUM_THREADS="$2" "$PASTEMIX" run "$WORK/$1.toml" --threads "$2" --quiet \
-      --out "$WORK/out_$1_t$2_r$3") > "$log" 2>&1 || { echo "pastemix failed, see $log" >&2; exit 1; }
+run_pastemix() {  # scene threads tag
+  local log="$WORK/pastemix_$1_t$2_$3.log" out="$WORK/out_$1_t$2_$3" toml="$WORK/$1_run.toml"
+  [[ $3 == setup ]] && toml="$WORK/$1_setup.toml"
+  mkdir -p "$out"
+  (cd "$WORK" && OMP_NUM_THREADS="$2" "${CPUTIME[@]}" "$log.cpu" -- "$PASTEMIX" run "$toml" --threads "$2" \
+      --quiet --out "$out") > "$log" 2>&1 || { echo "pastemix failed, see $log" >&2; exit 1; }
   # Keep the first repeat's output (report.py compares its final state with LIGGGHTS'); drop the rest.
-  [[ $3 -eq 1 ]] || rm -rf "$WORK/out_$1_t$2_r$3"
-  grep -m1 "total wall" "$log" >&2
+  [[ $3 == r1 ]] || rm -rf "$out"
+  [[ $3 == setup ]] || grep -m1 "total wall" "$log" >&2
 }
 
 # Interleave the two codes (L P L P ...) so slow phases of a noisy machine hit both alike.
 for scene in $SCENES; do
   for t in $THREADS; do
+    run_liggghts "$scene" "$t" setup 1
+    [[ $LIGGGHTS_ONLY -eq 1 ]] || run_pastemix "$scene" "$t" setup
     for ((r = 1; r <= REPEATS; r++)); do
       echo "== $scene, $t thread(s), repeat $r/$REPEATS" >&2
-      run_liggghts "$scene" "$t" "$r"
-      [[ $LIGGGHTS_ONLY -eq 1 ]] || run_pastemix "$scene" "$t" "$r"
+      run_liggghts "$scene" "$t" "r$r" "$(steps_of "$scene")"
+      [[ $LIGGGHTS_ONLY -eq 1 ]] || run_pastemix "$scene" "$t" "r$r"
     done
   done
 done

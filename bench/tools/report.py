@@ -98,8 +98,19 @@ def pastemix_final_state(h5path):
         return None
 
 
+def read_cpu(path):
+    try:
+        with open(path) as f:
+            return float(f.readline().split()[1])
+    except (OSError, IndexError, ValueError):
+        return None
+
+
 def collect(work, finals):
+    """Best (shortest-loop) run per (code, scene, threads); also the least loop CPU time over the repeats
+    (CPU of the run minus CPU of the 1-step setup run: see tools/cputime.py)."""
     best = {}
+    cpu_best = {}
     for path in sorted(glob.glob(os.path.join(work, "*.log"))):
         n = LOGNAME.search(os.path.basename(path))
         if not n:
@@ -115,6 +126,10 @@ def collect(work, finals):
             h5 = glob.glob(os.path.join(work, "out_%s_t%d_r%s" % (scene, threads, n.group(4)), "*.h5"))
             r["final"] = pastemix_final_state(h5[0]) if h5 else None
         key = (code, scene, threads)
+        cpu, setup = read_cpu(path + ".cpu"), read_cpu(
+            os.path.join(work, "%s_%s_t%d_setup.log.cpu" % (code, scene, threads)))
+        if cpu is not None and setup is not None:
+            cpu_best[key] = min(cpu_best.get(key, float("inf")), cpu - setup)
         if r["final"] is not None:
             finals.setdefault(key, r["final"])  # the first repeat that has one
         r["runs"] = best.get(key, {}).get("runs", 0) + 1
@@ -123,11 +138,18 @@ def collect(work, finals):
             best[key] = r
         else:
             best[key]["runs"] = r["runs"]
+    for key, c in cpu_best.items():
+        best[key]["cpu_s"] = c
     return best
 
 
 def mps(r):
     return r["particles"] * r["steps"] / r["loop_s"] / 1e6
+
+
+def cpu_mps(r):
+    c = r.get("cpu_s")
+    return r["particles"] * r["steps"] / c / 1e6 if c and c > 0 else None
 
 
 def stage_text(r):
@@ -145,7 +167,8 @@ def main():
     load = os.getloadavg()
     print("\nparticle-steps per second (millions), best of repeats; machine %s, %d cores, load avg %.1f"
           % (socket.gethostname(), os.cpu_count(), load[0]))
-    print("%-6s %7s %16s %16s %8s" % ("scene", "threads", "pastemix Mps/s", "LIGGGHTS Mps/s", "ratio"))
+    print("%-6s %7s %16s %16s %8s   %s" % ("scene", "threads", "pastemix Mps/s", "LIGGGHTS Mps/s", "ratio",
+                                        "(per CPU-second: pastemix, LIGGGHTS, ratio)"))
     rows = []
     for s in scenes:
         for t in threads:
@@ -153,14 +176,17 @@ def main():
             pm = mps(p) if p else None
             lm = mps(l) if l else None
             ratio = pm / lm if (pm and lm) else None
-            print("%-6s %7d %16s %16s %8s" % (
+            pc, lc = (cpu_mps(p) if p else None), (cpu_mps(l) if l else None)
+            print("%-6s %7d %16s %16s %8s   (%s, %s, %s)" % (
                 s, t, "%.3f" % pm if pm else "-", "%.3f" % lm if lm else "-",
-                "%.2f" % ratio if ratio else "-"))
+                "%.2f" % ratio if ratio else "-", "%.3f" % pc if pc else "-", "%.3f" % lc if lc else "-",
+                "%.2f" % (pc / lc) if (pc and lc) else "-"))
             for code, r in (("pastemix", p), ("liggghts", l)):
                 if r:
                     rows.append([stamp, s, t, code, r["particles"], r["steps"], "%.6g" % r["loop_s"],
                                  r["runs"], "%.6g" % mps(r), "%.4g" % ratio if ratio else "",
-                                 stage_text(r), r["log"]])
+                                 "%.6g" % r["cpu_s"] if r.get("cpu_s") else "",
+                                 "%.6g" % cpu_mps(r) if cpu_mps(r) else "", stage_text(r), r["log"]])
     print("\nwhere the time goes (share of the loop time, best run):")
     for (code, s, t), r in sorted(best.items(), key=lambda kv: (kv[0][1], kv[0][2], kv[0][0])):
         print("  %-8s %-5s t%d: %s" % (code, s, t, stage_text(r)))
@@ -176,7 +202,7 @@ def main():
     with open(csv_out, "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(["date_utc", "scene", "threads", "code", "particles", "steps", "loop_s", "runs", "mps",
-                    "ratio_pastemix_over_liggghts", "stages", "log", "load_avg_1min", "settings"])
+                    "ratio_pastemix_over_liggghts", "loop_cpu_s", "mps_per_cpu_s", "stages", "log", "load_avg_1min", "settings"])
         for row in rows:
             w.writerow(row + ["%.1f" % load[0], os.environ.get("BENCH_SETTINGS", "")])
     print("\nwrote %s" % csv_out)
