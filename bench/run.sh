@@ -57,6 +57,10 @@ if [[ $LIGGGHTS_ONLY -eq 0 && ! -x "$PASTEMIX" ]]; then
   echo "run.sh: building pastemix (scripts/build.sh)" >&2
   "$ROOT/scripts/build.sh" >&2
 fi
+if [[ $LIGGGHTS_ONLY -eq 0 ]] && ! "$PASTEMIX" run --help >/dev/null 2>&1; then
+  echo "run.sh: $PASTEMIX has no 'run' command (engine not built in?): use --liggghts-only or PASTEMIX=..." >&2
+  exit 2
+fi
 
 # --- initial states, generated once and read by both codes -------------------------------------------
 STAMP="$(date -u +%Y-%m-%dT%H%M%SZ)"
