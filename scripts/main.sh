@@ -8,5 +8,6 @@ scripts/install-deps.sh
 scripts/build.sh
 start=$(date +%s%N)
 build/pastemix lab reduce datasets/thesis --out "$out/lab"
+build/pastemix lab drag-fit datasets/thesis --out "$out/drag"
 end=$(date +%s%N)
 awk -v ns="$((end - start))" -v out="$out" 'BEGIN { printf "main job: done in %.1f s; outputs in %s/\n", ns / 1e9, out }'
