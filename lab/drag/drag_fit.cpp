@@ -25,11 +25,11 @@ double value_of(const ceres::Jet<double, N>& x) {
 
 struct LogCdResidual {
   CurveId id;
-  double re, cd;
+  double re, cd, y;
   template <typename T>
   bool operator()(const T* c, T* r) const {
     using std::log;
-    r[0] = log(pastemix::drag::drag_coefficient(id, c, T(re))) - T(std::log(cd));
+    r[0] = log(pastemix::drag::drag_coefficient(id, c, T(re), y)) - T(std::log(cd));
     return true;
   }
 };
@@ -58,10 +58,11 @@ struct VelocityResidual {
     std::vector<J1> cj(n_coef);
     for (int i = 0; i < n_coef; ++i) cj[i] = J1(curve.coefficients[i]);
     const J1 vj(tv.v, 0);
-    const double dG_dv = -pastemix::drag::dedegil_drag(id, cj.data(), sphere, vj).v[0];
+    const double y = pastemix::drag::yield_number(sphere, g);
+    const double dG_dv = -pastemix::drag::dedegil_drag(id, cj.data(), sphere, vj, y).v[0];
     if (!(dG_dv < 0.0)) return false;  // G must fall through its root for a well-posed curve
     // One Newton step in T: its value refines the root, its derivative part is -(dG/dc)/(dG/dv).
-    const T G = T(pastemix::drag::net_weight(sphere, g)) - pastemix::drag::dedegil_drag(id, c, sphere, T(tv.v));
+    const T G = T(pastemix::drag::net_weight(sphere, g)) - pastemix::drag::dedegil_drag(id, c, sphere, T(tv.v), y);
     const T v = T(tv.v) - G / dG_dv;
     r[0] = log(v / v_measured);
     return true;
@@ -71,7 +72,7 @@ struct VelocityResidual {
 template <int N>
 ceres::CostFunction* make_cost(CurveId id, const SettlingSphere& s, const FitOptions& o, double g) {
   if (o.target == FitTarget::log_cd)
-    return new ceres::AutoDiffCostFunction<LogCdResidual, 1, N>(new LogCdResidual{id, s.re, s.cd});
+    return new ceres::AutoDiffCostFunction<LogCdResidual, 1, N>(new LogCdResidual{id, s.re, s.cd, pastemix::drag::yield_number(s.sphere, g)});
   return new ceres::AutoDiffCostFunction<VelocityResidual, 1, N>(
       new VelocityResidual{id, N, s.sphere, s.v, g});
 }
@@ -80,13 +81,15 @@ ceres::CostFunction* make_cost(CurveId id, const SettlingSphere& s, const FitOpt
   switch (pastemix::drag::curve_info(id).n_coefficients) {
     case 4: return make_cost<4>(id, s, o, g);
     case 5: return make_cost<5>(id, s, o, g);
+    case 6: return make_cost<6>(id, s, o, g);
     default: throw RuntimeFailure("drag fit: family has no fittable coefficients");
   }
 }
 
 // One Ceres solve of `problem` (empty on entry) from the values in `coef`; fills all but the covariance.
+// Coefficients listed in `held` stay at their values.
 CurveFit solve(CurveId id, std::span<const SettlingSphere> spheres, const FitOptions& o, double g,
-               ceres::Problem* problem, std::vector<double>* coef) {
+               ceres::Problem* problem, std::vector<double>* coef, const std::vector<int>& held = {}) {
   const auto& info = pastemix::drag::curve_info(id);
   for (const auto& s : spheres) {
     ceres::LossFunction* loss = o.loss == FitLoss::cauchy ? new ceres::CauchyLoss(o.loss_scale) : nullptr;
@@ -96,6 +99,7 @@ CurveFit solve(CurveId id, std::span<const SettlingSphere> spheres, const FitOpt
     problem->SetParameterLowerBound(coef->data(), i, info.lower[i]);
     problem->SetParameterUpperBound(coef->data(), i, info.upper[i]);
   }
+  if (!held.empty()) problem->SetManifold(coef->data(), new ceres::SubsetManifold(info.n_coefficients, held));
   ceres::Solver::Options so;
   so.linear_solver_type = ceres::DENSE_QR;
   so.max_num_iterations = o.max_iterations;
@@ -145,8 +149,32 @@ CurveFit fit_drag_curve(CurveId family, std::span<const SettlingSphere> spheres,
     ceres::Problem pre;
     solve(family, spheres, first, g, &pre, &coef);
   }
-  ceres::Problem problem;
-  CurveFit fit = solve(family, spheres, options, g, &problem, &coef);
+  // A family with a yield-number coefficient (the last, neutral at 0) gets a second start for the velocity
+  // fit: its Y-free curve fitted to the velocities (q held at 0), then q freed. The ln Cd fit of such a family
+  // can be far from the velocity optimum (Cd Re' near yield is fixed by Y, not by the speed), and the
+  // velocity objective has several minima; the lower final cost of the two runs wins (same objective, so
+  // this is a better minimiser, not a different criterion).
+  std::vector<double> alt;
+  if (options.target == FitTarget::velocity && info.uses_yield_number) {
+    alt.assign(info.start.begin(), info.start.begin() + p);
+    FitOptions first = options;
+    first.target = FitTarget::log_cd;
+    ceres::Problem pre_cd, pre_v;
+    solve(family, spheres, first, g, &pre_cd, &alt, {p - 1});
+    solve(family, spheres, options, g, &pre_v, &alt, {p - 1});
+  }
+  auto problem = std::make_unique<ceres::Problem>();
+  CurveFit fit = solve(family, spheres, options, g, problem.get(), &coef);
+  if (!alt.empty()) {
+    auto problem_alt = std::make_unique<ceres::Problem>();
+    CurveFit fit_alt = solve(family, spheres, options, g, problem_alt.get(), &alt);
+    if (fit_alt.cost < fit.cost) {
+      // The problem points into `alt`: keep both together (the covariance below evaluates them).
+      std::swap(coef, alt);  // moves the buffers, so problem_alt's block now lives in `coef`
+      std::swap(problem, problem_alt);
+      fit = std::move(fit_alt);
+    }
+  }
 
   fit.sd.assign(p, std::numeric_limits<double>::quiet_NaN());
   fit.at_bound.assign(p, false);
@@ -161,13 +189,13 @@ CurveFit fit_drag_curve(CurveId family, std::span<const SettlingSphere> spheres,
   for (int i = 0; i < p; ++i)
     if (fit.at_bound[i]) fixed.push_back(i);
   if (static_cast<int>(fixed.size()) == p) return fit;
-  if (!fixed.empty()) problem.SetManifold(coef.data(), new ceres::SubsetManifold(p, fixed));
+  if (!fixed.empty()) problem->SetManifold(coef.data(), new ceres::SubsetManifold(p, fixed));
   const int free = p - static_cast<int>(fixed.size());
   ceres::Covariance::Options co;
   co.algorithm_type = ceres::DENSE_SVD;
   ceres::Covariance cov(co);
   std::vector<std::pair<const double*, const double*>> blocks{{coef.data(), coef.data()}};
-  if (cov.Compute(blocks, &problem)) {
+  if (cov.Compute(blocks, problem.get())) {
     Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> m(p, p);
     cov.GetCovarianceBlock(coef.data(), coef.data(), m.data());
     const double s2 = fit.rms * fit.rms * fit.n / (fit.n - free);
