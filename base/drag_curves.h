@@ -22,6 +22,16 @@
 // non-increasing positive terms are non-increasing, and of non-decreasing terms non-decreasing.
 // power_blend is a smooth maximum (Churchill-Usagi) of a viscous-yield branch and Newton's constant Cd = c;
 // n sets how sharply the two meet.
+//
+// yield_blend also depends on the sphere's yield number Y = tau_y / (g d (rho_p - rho_f)) (a constant for a
+// given sphere in a given fluid; the yield term holds the sphere suspended for Y >= 2/(3 pi)):
+//   yield_blend: Cd = ((k exp(-q Y)/Re' + a Re'^-b)^n + c^n)^(1/n)
+// For fixed Y it is power_blend with k' = k exp(-q Y) > 0, so (1)-(3) hold for every Y and admissible
+// coefficient vector. Why Y: near yield the force balance fixes Cd Re' ~ (4/3)(1 - 3 pi Y / 2)/Y while the
+// measured Re' spans two decades (Table 4.3 rows 1, 2, 67 against 54, 56), which no curve of Re' alone can
+// follow; Beris et al. (1985) likewise find the creeping drag in a Bingham fluid set by the yield
+// (Bingham) number beyond Re'. Fitted for 0.0015 <= Y <= 0.045 and Re' >= 0.4: its Y -> 0, Re' << 1 limit
+// is k/Re' (k ~ 110), not Stokes 24/Re'; no sphere in the data is Newtonian and creeping.
 #pragma once
 
 #include <array>
@@ -32,9 +42,9 @@
 
 namespace pastemix::drag {
 
-inline constexpr int kMaxCoefficients = 5;
+inline constexpr int kMaxCoefficients = 6;
 
-enum class CurveId { stokes, published_4_19, power_sum, power_blend };
+enum class CurveId { stokes, published_4_19, power_sum, power_blend, yield_blend };
 
 struct CurveInfo {
   CurveId id;
@@ -45,25 +55,33 @@ struct CurveInfo {
   // Admissible box (monotonicity holds inside it) and the fit's starting point.
   std::array<double, kMaxCoefficients> lower, upper, start;
   bool continuous;  // false only for the published piecewise curve
+  bool uses_yield_number = false;  // Cd depends on Y = tau_y / (g d (rho_p - rho_f)) as well as Re'
 };
 
-inline constexpr std::array<CurveInfo, 4> kCurves{{
-    {CurveId::stokes, "stokes", "Cd = 24/Re'", 0, {}, {}, {}, {}, true},
+inline constexpr std::array<CurveInfo, 5> kCurves{{
+    {CurveId::stokes, "stokes", "Cd = 24/Re'", 0, {}, {}, {}, {}, true, false},
     {CurveId::published_4_19, "published_4_19",
      "Cd = 24/Re' (Re' < 1); 29.12/Re' + 0.195 (1 <= Re' <= 150); 0.4 (Re' > 150)", 0, {}, {}, {}, {},
-     false},
+     false, false},
     {CurveId::power_sum, "power_sum", "Cd = k/Re' + a Re'^-b + c", 4,
      {"k", "a", "b", "c", ""},
      {0.0, 0.0, 0.01, 0.0, 0.0},
      {1000.0, 1000.0, 0.99, 10.0, 0.0},
      {24.0, 3.0, 0.5, 0.3, 0.0},
-     true},
+     true, false},
     {CurveId::power_blend, "power_blend", "Cd = ((k/Re' + a Re'^-b)^n + c^n)^(1/n)", 5,
      {"k", "a", "b", "c", "n"},
      {0.0, 0.0, 0.01, 0.01, 0.3},
      {1000.0, 1000.0, 0.99, 10.0, 10.0},
      {24.0, 1.0, 0.5, 0.4, 1.5},
-     true},
+     true, false},
+    {CurveId::yield_blend, "yield_blend", "Cd = ((k exp(-q Y)/Re' + a Re'^-b)^n + c^n)^(1/n), Y = tau_y/(g d (rho_p - rho_f))",
+     6,
+     {"k", "a", "b", "c", "n", "q"},
+     {0.0, 0.0, 0.01, 0.01, 0.3, -100.0},
+     {1000.0, 1000.0, 0.99, 10.0, 10.0, 200.0},
+     {24.0, 1.0, 0.5, 0.4, 1.5, 0.0},
+     true, true},
 }};
 
 inline const CurveInfo& curve_info(CurveId id) { return kCurves[static_cast<std::size_t>(id)]; }
@@ -85,9 +103,21 @@ inline std::string_view check_coefficients(CurveId id, const std::vector<double>
   return {};
 }
 
-// Cd(Re') for curve `id` with coefficients `c` (ignored by the fixed curves). Re' > 0.
+// Smooth maximum of the viscous-yield branch x and Newton's constant cn with exponent n (Churchill-Usagi),
+// written around the larger term so x^n cannot overflow at tiny Re'.
 template <typename T>
-T drag_coefficient(CurveId id, const T* c, const T& re) {
+T power_mean_max(const T& x, const T& cn, const T& n) {
+  using std::pow;
+  const T m = x > cn ? x : cn;
+  return m * pow(pow(x / m, n) + pow(cn / m, n), T(1.0) / n);
+}
+
+// Cd(Re', Y) for curve `id` with coefficients `c` (ignored by the fixed curves). Re' > 0; y is the sphere's
+// yield number Y = tau_y / (g d (rho_p - rho_f)) (see yield_number), used only by families with
+// uses_yield_number.
+template <typename T>
+T drag_coefficient(CurveId id, const T* c, const T& re, double y) {
+  using std::exp;
   using std::pow;  // ceres::pow for Jets is found by argument-dependent lookup
   switch (id) {
     case CurveId::stokes:
@@ -98,12 +128,10 @@ T drag_coefficient(CurveId id, const T* c, const T& re) {
       return T(0.4) + T(0.0) * re;  // keep the derivative slot of a Jet defined
     case CurveId::power_sum:
       return c[0] / re + c[1] * pow(re, -c[2]) + c[3];
-    case CurveId::power_blend: {
-      const T x = c[0] / re + c[1] * pow(re, -c[2]);
-      // Power mean written around the larger term so (k/Re')^n cannot overflow at tiny Re'.
-      const T m = x > c[3] ? x : c[3];
-      return m * pow(pow(x / m, c[4]) + pow(c[3] / m, c[4]), T(1.0) / c[4]);
-    }
+    case CurveId::power_blend:
+      return power_mean_max(c[0] / re + c[1] * pow(re, -c[2]), c[3], c[4]);
+    case CurveId::yield_blend:
+      return power_mean_max(c[0] * exp(-c[5] * y) / re + c[1] * pow(re, -c[2]), c[3], c[4]);
   }
   return T(0.0);
 }
@@ -125,18 +153,22 @@ struct BinghamSphere {
 
 inline constexpr double kPi = 3.14159265358979323846;
 
+// Yield number Y = tau_y / (g d (rho_p - rho_f)) (dimensionless; g in m/s2). The yield term of (4.9) is
+// 3 pi Y / 2 times the net weight, so a sphere with Y >= 2/(3 pi) ~ 0.212 stays suspended.
+inline double yield_number(const BinghamSphere& s, double g) { return s.tau_y / (g * s.d * (s.rho_p - s.rho_f)); }
+
 // Net weight (weight minus buoyancy), N.
 inline double net_weight(const BinghamSphere& s, double g) {
   return (s.rho_p - s.rho_f) * g * kPi * s.d * s.d * s.d / 6.0;
 }
 
-// Dedegil's drag (4.9) at speed v > 0, N.
+// Dedegil's drag (4.9) at speed v > 0, N; y = yield_number(s, g).
 template <typename T>
-T dedegil_drag(CurveId id, const T* c, const BinghamSphere& s, const T& v) {
+T dedegil_drag(CurveId id, const T* c, const BinghamSphere& s, const T& v, double y) {
   const T re = bingham_reynolds(s.rho_f, v, s.tau_y, s.eta_B, s.d);
   const double area = kPi * s.d * s.d / 4.0;
   const double yield = (kPi * s.d / 2.0) * (kPi * s.d / 2.0) * s.tau_y;
-  return yield + 0.5 * drag_coefficient(id, c, re) * s.rho_f * v * v * area;
+  return yield + 0.5 * drag_coefficient(id, c, re, y) * s.rho_f * v * v * area;
 }
 
 // Settling drag coefficient (4.17) from a measured terminal velocity: the Cd that balances net weight.
@@ -150,9 +182,9 @@ struct DragCurve {
   std::vector<double> coefficients;
 
   const CurveInfo& info() const { return curve_info(id); }
-  double cd(double re) const { return drag_coefficient<double>(id, coefficients.data(), re); }
-  double drag(const BinghamSphere& s, double v) const {
-    return dedegil_drag<double>(id, coefficients.data(), s, v);
+  double cd(double re, double y) const { return drag_coefficient<double>(id, coefficients.data(), re, y); }
+  double drag(const BinghamSphere& s, double v, double y) const {
+    return dedegil_drag<double>(id, coefficients.data(), s, v, y);
   }
 };
 

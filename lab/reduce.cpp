@@ -90,7 +90,7 @@ void run_block_cut(const Params& t, const Manifest& m, ReduceResult& r) {
 // refits that choice in-sample, with its covariance, so the engine gets coefficients with uncertainties.
 void run_drag_curve(const Params& t, const Manifest& m, ReduceResult& r) {
   const std::string spheres = t.string("spheres"), suspensions = t.string("suspensions");
-  const std::string family_name = t.choice("family", {"power_sum", "power_blend"});
+  const std::string family_name = t.choice("family", {"power_sum", "power_blend", "yield_blend"});
   const std::string target = t.choice("target", {"velocity", "log_cd"});
   const std::string chosen_by = t.string("chosen_by");
   for (const auto& [key, file] : {std::pair{"spheres", spheres}, std::pair{"suspensions", suspensions}})

@@ -32,7 +32,7 @@ for s in sorted({r["suspension"] for r in rows}, key=int):
     ax.scatter([float(r["Re_prime"]) for r in sel], [float(r["Cd"]) for r in sel], s=18, label=f"suspension {s}")
 ax.plot(re, [float(c["stokes"]) for c in curves], "k:", lw=1, label="Stokes 24/Re'")
 ax.plot(re, [float(c["published_4_19"]) for c in curves], "k--", lw=1.2, label="published (4.19)")
-ax.plot(re, [float(c[chosen]) for c in curves], "r-", lw=2, label=f"fit: {chosen}")
+ax.plot(re, [float(c[chosen]) for c in curves], "r-", lw=2, label=f"fit: {chosen} (at the median Y = {float(curves[0]['y_sampled']):.3g} if it depends on Y)")
 ax.set_xscale("log"); ax.set_yscale("log")
 ax.set_xlim(0.1, 5e3); ax.set_ylim(0.2, 300)
 ax.set_xlabel("Re' = rho_f v^2 / (tau_y + eta_B v / d)"); ax.set_ylabel("Cd (eq. 4.17)")

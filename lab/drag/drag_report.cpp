@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: MIT
 #include "lab/drag/drag_report.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <vector>
 #include <map>
 
 #include <fmt/format.h>
@@ -137,15 +139,25 @@ std::string summary_csv(const DragFitResult& r) {
   return out;
 }
 
+// The data's median yield number: where curves that depend on Y are sampled for the Cd(Re') plot.
+double median_yield_number(const DragFitResult& r) {
+  std::vector<double> y;
+  for (const auto& s : r.data.spheres) y.push_back(pastemix::drag::yield_number(s.sphere, units::g));
+  std::sort(y.begin(), y.end());
+  return y.empty() ? 0.0 : y[y.size() / 2];
+}
+
+// Curves that depend on the yield number Y are sampled at the data's median Y (the CSV's y_sampled column).
 std::string curves_csv(const DragFitResult& r) {
-  std::string out = "Re_prime,published_4_19,stokes";
+  const double y = median_yield_number(r);
+  std::string out = "Re_prime,y_sampled,published_4_19,stokes";
   for (const auto& c : r.candidates) out += fmt::format(",{}", c.name());
   out += "\n";
   for (int i = 0; i <= 700; ++i) {
     const double re = std::pow(10.0, -3.0 + 7.0 * i / 700.0);
-    out += fmt::format("{},{},{}", num(re), num(DragCurve{pastemix::drag::CurveId::published_4_19, {}}.cd(re)),
+    out += fmt::format("{},{},{},{}", num(re), num(y), num(DragCurve{pastemix::drag::CurveId::published_4_19, {}}.cd(re, y)),
                        num(24.0 / re));
-    for (const auto& c : r.candidates) out += fmt::format(",{}", num(c.in_sample.curve.cd(re)));
+    for (const auto& c : r.candidates) out += fmt::format(",{}", num(c.in_sample.curve.cd(re, y)));
     out += "\n";
   }
   return out;
@@ -168,6 +180,14 @@ std::string drag_curve_toml(const DragFitResult& r) {
                      "# the Stokes 1/Re' term, which a Newtonian fluid at Re' << 1 would need).\n"
                      "fitted_re_prime_range = [{}, {}]\n",
                      exact(re_min), exact(re_max));
+  double y_min = INFINITY, y_max = 0.0;
+  for (const auto& s : r.data.spheres) {
+    const double y = pastemix::drag::yield_number(s.sphere, units::g);
+    y_min = std::min(y_min, y), y_max = std::max(y_max, y);
+  }
+  out += fmt::format("# Y = tau_y / (g d (rho_p - rho_f)), per sphere; an input of curves with uses_yield_number.\n"
+                     "uses_yield_number = {}\nfitted_yield_number_range = [{}, {}]\n",
+                     info.uses_yield_number, exact(y_min), exact(y_max));
   out += fmt::format("dataset = {}\nsource = {}\nn = {}\ng_m_s2 = {}\n\n", toml_string(r.dataset_dir.string()),
                      toml_string(kSources), b.in_sample.n, num(units::g));
   for (const auto& p : drag_curve_parameters(r)) {

@@ -87,7 +87,7 @@ std::vector<std::pair<CurveId, FitOptions>> default_candidates(bool with_robust)
   std::vector<std::pair<CurveId, FitOptions>> out;
   for (FitLoss loss : {FitLoss::none, FitLoss::cauchy}) {
     if (loss == FitLoss::cauchy && !with_robust) continue;
-    for (CurveId f : {CurveId::power_sum, CurveId::power_blend})
+    for (CurveId f : {CurveId::power_sum, CurveId::power_blend, CurveId::yield_blend})
       for (FitTarget t : {FitTarget::log_cd, FitTarget::velocity}) {
         FitOptions o;
         o.target = t;

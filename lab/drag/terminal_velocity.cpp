@@ -18,7 +18,8 @@ struct Residual {
   const DragCurve& curve;
   const BinghamSphere& s;
   double weight;
-  double operator()(double v) const { return weight - curve.drag(s, v); }
+  double y;  // yield number of the sphere (for curves that depend on it)
+  double operator()(double v) const { return weight - curve.drag(s, v, y); }
 };
 
 // Bisects a sign change of G inside [a, b] down to a relative width of 1e-13.
@@ -89,7 +90,7 @@ double stokes_terminal_velocity(const BinghamSphere& s, double g) {
 
 TerminalVelocity solve_terminal_velocity(const DragCurve& curve, const BinghamSphere& s, double g) {
   check_sphere(s);
-  const Residual G{curve, s, pastemix::drag::net_weight(s, g)};
+  const Residual G{curve, s, pastemix::drag::net_weight(s, g), pastemix::drag::yield_number(s, g)};
   if (G.weight <= 0.0) return suspended(G.weight);  // not heavier than the fluid: it does not sink
   const double g0 = G(kVMin);
   if (g0 <= 0.0) return suspended(g0);
@@ -117,7 +118,7 @@ TerminalVelocity solve_terminal_velocity(const DragCurve& curve, const BinghamSp
 
 TerminalVelocity solve_terminal_velocity_monotone(const DragCurve& curve, const BinghamSphere& s, double g) {
   check_sphere(s);
-  const Residual G{curve, s, pastemix::drag::net_weight(s, g)};
+  const Residual G{curve, s, pastemix::drag::net_weight(s, g), pastemix::drag::yield_number(s, g)};
   if (G.weight <= 0.0) return suspended(G.weight);
   const double g0 = G(kVMin);
   if (g0 <= 0.0) return suspended(g0);

@@ -49,9 +49,10 @@ TEST_CASE("reduce: every thesis step runs and yields the acceptance parameters")
   // The drag curve named in the manifest, refitted with uncertainties the engine can load by name.
   bool chosen = false;
   for (const auto& p : r.parameters)
-    if (p.key == "drag_curve.chosen") chosen = p.text == "power_blend";
+    if (p.key == "drag_curve.chosen") chosen = p.text == "yield_blend";
   CHECK(chosen);
-  CHECK(value("drag_curve.power_blend.c") > 0.0);
+  CHECK(value("drag_curve.yield_blend.c") > 0.0);
+  CHECK(value("drag_curve.yield_blend.q") > 0.0);  // drag falls with the yield number at a given Re'
 }
 
 TEST_CASE("reduce CLI: writes parameters.toml (valid TOML), lab.h5 (4x3x3 grids) and one PNG per case") {

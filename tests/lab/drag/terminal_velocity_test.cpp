@@ -92,6 +92,6 @@ TEST_CASE("terminal velocity: fast and full solvers agree for a fitted-family cu
     REQUIRE(full.outcome == SettlingOutcome::settling);
     CHECK(full.sign_changes == 1);
     CHECK(fast.v == doctest::Approx(full.v).epsilon(1e-12));
-    CHECK(curve.drag(s, full.v) == doctest::Approx(pastemix::drag::net_weight(s, g)).epsilon(1e-10));
+    CHECK(curve.drag(s, full.v, pastemix::drag::yield_number(s, g)) == doctest::Approx(pastemix::drag::net_weight(s, g)).epsilon(1e-10));
   }
 }
