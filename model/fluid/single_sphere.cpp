@@ -18,15 +18,15 @@ std::string single_sphere_scene(const SphereRun& r, double end_time) {
       "seed = 1\ntime_step = {:.17g}\nend_time = {:.17g}\n"
       "[domain]\nmin = [{h:.17g}, {h:.17g}, -0.01]\nmax = [{H:.17g}, {H:.17g}, {top:.17g}]\n"
       "[physics]\nrotation = false\n[contact]\nlaw = \"hertz_mindlin\"\n"
-      "[[material]]\nname = \"sphere\"\ndensity = {rho:.17g}\nyoungs_modulus = 2e11\npoisson_ratio = 0.3\n"
-      "[[material]]\nname = \"wall\"\ndensity = 7800\nyoungs_modulus = 2e11\npoisson_ratio = 0.3\n"
+      "[[material]]\nname = \"sphere\"\ndensity = {rho:.17g}\nyoungs_modulus = {E:.17g}\npoisson_ratio = 0.3\n"
+      "[[material]]\nname = \"wall\"\ndensity = 7800\nyoungs_modulus = {E:.17g}\npoisson_ratio = 0.3\n"
       "[[interaction]]\nmaterials = \"sphere/sphere\"\nrestitution = 0.5\nfriction = 0.0\n"
       "[[interaction]]\nmaterials = \"sphere/wall\"\nrestitution = 0.5\nfriction = 0.0\n"
       "[[interaction]]\nmaterials = \"wall/wall\"\nrestitution = 0.5\nfriction = 0.0\n"
       "[[particle]]\nmaterial = \"sphere\"\nradius = {rad:.17g}\nposition = [0, 0, {z0:.17g}]\n"
       "velocity = [0, 0, {vz:.17g}]\n",
       r.dt, end_time, fmt::arg("h", -half - r.d), fmt::arg("H", half + r.d), fmt::arg("top", top),
-      fmt::arg("rho", r.rho_p), fmt::arg("rad", rad), fmt::arg("z0", z0), fmt::arg("vz", r.vz0));
+      fmt::arg("rho", r.rho_p), fmt::arg("rad", rad), fmt::arg("z0", z0), fmt::arg("vz", r.vz0), fmt::arg("E", r.youngs_modulus));
   if (r.floor)
     s += "[[wall]]\nname = \"floor\"\ntype = \"plane\"\nmaterial = \"wall\"\npoint = [0, 0, 0]\nnormal = [0, 0, 1]\n";
   s += fmt::format("[[fluid]]\nx = [{:.17g}, {:.17g}]\ny = [{:.17g}, {:.17g}]\nbottom = 0\nsurface = {:.17g}\n"

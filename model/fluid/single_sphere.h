@@ -24,7 +24,8 @@ struct SphereRun {
   double drop = -1e-3;
   double vz0 = 0.0;        // m/s, initial vertical velocity
   double dt = 1e-4;        // s
-  bool floor = true;       // a plane wall (steel) at the bottom
+  bool floor = true;       // a plane wall at the bottom
+  double youngs_modulus = 2e11;  // Pa, of the sphere and wall materials (contacts only)
   bool yield_term = true, partial_submergence = true, buoyancy = true, surface_rise = true;
 };
 
