@@ -12,17 +12,21 @@
 
 #include "base/error.h"
 #include "base/h5.h"
+#include "lab/drag/settling.h"
 #include "lab/drag/terminal_velocity.h"
 #include "model/fluid/fluid_scene.h"
 #include "model/fluid/validations.h"
 #include "model/run.h"
 #include "model/scene.h"
+#include "tests/run_command.h"
 
 using namespace pastemix;
 using namespace pastemix::model;
 using namespace pastemix::model::fluid;
 
 namespace {
+
+std::filesystem::path source_dir() { return PASTEMIX_SOURCE_DIR; }
 
 // A well-posed fitted curve (power_blend at its fit's starting point): any admissible curve will do for an
 // engine-vs-solver comparison, and it needs no lab reduce run.
@@ -106,6 +110,32 @@ TEST_CASE("fluid engine: terminal velocities in a 3 m column agree with the lab 
   }
 }
 
+TEST_CASE("fluid engine: all 121 Valentik & Whitmore spheres: DEM terminal velocity within 1 % of the lab solver") {
+  const auto data = lab::drag::read_settling_dataset(source_dir() / "datasets/thesis");
+  REQUIRE(data.spheres.size() == 121);
+  double worst = 0.0;
+  int settling = 0;
+  for (const auto& sp : data.spheres) {
+    const auto lab = lab::drag::solve_terminal_velocity(kBlend, sp.sphere, 9.81);
+    SphereRun r;
+    r.d = sp.sphere.d, r.rho_p = sp.sphere.rho_p, r.rho_f = sp.sphere.rho_f, r.tau_y = sp.sphere.tau_y;
+    r.eta = sp.sphere.eta_B, r.curve = kBlend, r.dt = 1e-3;
+    const ColumnSettling dem = column_settling(r, 3.0);
+    INFO("row " << sp.row_id << ": lab " << lab.v << " m/s, DEM " << dem.v_final << " m/s");
+    if (lab.outcome == lab::drag::SettlingOutcome::suspended) {
+      CHECK(dem.trapped);  // at rest in both
+      continue;
+    }
+    REQUIRE(lab.outcome == lab::drag::SettlingOutcome::settling);
+    ++settling;
+    CHECK_FALSE(dem.trapped);
+    worst = std::max(worst, std::abs(dem.v_final / lab.v - 1.0));
+  }
+  MESSAGE("max |DEM/lab - 1| = " << worst << " over " << settling << " settling spheres");
+  CHECK(settling > 100);
+  CHECK(worst < 0.01);
+}
+
 TEST_CASE("fluid engine: the surface rises by the submerged volume over the box area; buoyancy floats a light sphere") {
   SphereRun r;
   r.d = 0.02, r.rho_p = 500, r.rho_f = 1000, r.eta = 0.5, r.curve = {drag::CurveId::stokes, {}}, r.dt = 1e-4;
@@ -183,4 +213,46 @@ TEST_CASE("fluid output: surface height series, fluid attributes and material de
   CHECK(h5.attribute_double("/", "fluid_surface_z") == doctest::Approx(0.2 + v / (4 * half * half)).epsilon(1e-12));
   CHECK(h5.read_doubles("/timeseries/fluid_surface_z").size() == h5.read_doubles("/timeseries/time").size());
   CHECK(h5.read_doubles("/material_density") == std::vector<double>{2700.0, 7800.0});
+}
+
+TEST_CASE("fluid engine: steel balls in paste: distance grows with height and ball size, falls with viscosity") {
+  SteelBallPaste p;
+  p.dt = 1e-4;  // distances agree with 2e-5 and 5e-6 s to 0.01 mm (validate steel-balls --dt)
+  const double d0 = steel_ball_drop(p, 0.0126, 0.0, 0.7).distance;
+  const double d255 = steel_ball_drop(p, 0.0126, 0.255, 0.7).distance;
+  const double d255_16 = steel_ball_drop(p, 0.016, 0.255, 0.7).distance;
+  const double d255_visc = steel_ball_drop(p, 0.0126, 0.255, 1.4).distance;
+  CHECK(d0 > 0.0);
+  CHECK(d255 > d0);
+  CHECK(d255_16 > d255);
+  CHECK(d255_visc < d255);
+  // Resting ball: net weight below the rest drag (yield number 0.18 > 0.044), so it is suspended, not on the floor.
+  CHECK_FALSE(steel_ball_drop(p, 0.016, 0.255, 0.7).reached_bottom);
+}
+
+TEST_CASE("fluid engine: calibrate viscosity recovers a known eta_B from a synthetic settling distance") {
+  SteelBallPaste p;
+  p.dt = 1e-4;
+  for (double eta_true : {0.35, 1.3}) {
+    const double target = steel_ball_drop(p, 0.0126, 0.255, eta_true).distance;
+    const Calibration c = calibrate_viscosity(p, 0.0126, 0.255, target);
+    INFO("eta_true " << eta_true << ", calibrated " << c.eta << " after " << c.runs << " runs");
+    CHECK(c.eta == doctest::Approx(eta_true).epsilon(1e-3));
+  }
+  CHECK_THROWS_AS(calibrate_viscosity(p, 0.0126, 0.255, 1.0), RuntimeFailure);  // 1 m: beyond any viscosity
+}
+
+TEST_CASE("fluid CLI: validate water, calibrate viscosity, bad input exits 2, unreachable target exits 3") {
+  const auto w = pastemix::test::run_pastemix("validate water --dt 1e-3");
+  CHECK(w.exit_code == 0);
+  CHECK(w.output.find("max rel error") != std::string::npos);
+  const auto c = pastemix::test::run_pastemix("calibrate viscosity --ball 12.6 --height 255 --distance 57.16 --dt 1e-4");
+  CHECK(c.exit_code == 0);
+  CHECK(std::stod(c.output.substr(c.output.find("eta_B = ") + 8)) == doctest::Approx(0.7).epsilon(1e-3));  // 57.16 mm is the distance 0.7 Pa.s gives
+  CHECK(pastemix::test::run_pastemix("calibrate viscosity --distance -3").exit_code == 2);
+  CHECK(pastemix::test::run_pastemix("calibrate viscosity --distance 500 --dt 1e-4").exit_code == 3);
+  const auto s = pastemix::test::run_pastemix("validate settling " + (source_dir() / "datasets/thesis").string() +
+                                              " --curve published_4_19 --rows 30");
+  CHECK(s.exit_code == 0);
+  CHECK(s.output.find("trapped 0") != std::string::npos);
 }
