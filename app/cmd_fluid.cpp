@@ -33,6 +33,8 @@ drag::DragCurve curve_option(const std::string& name, const std::string& params)
   return read_chosen_curve(params, name);
 }
 
+void register_pour(CLI::App* val);
+
 void register_validate(CLI::App& app) {
   CLI::App* val = app.add_subcommand("validate", "fluid validations through the engine");
   val->require_subcommand(1);
@@ -99,6 +101,7 @@ void register_validate(CLI::App& app) {
                so->curve, n, compared, worst, worst_row, trapped, inconsistent);
   });
 
+  register_pour(val);
   CLI::App* susp = val->add_subcommand("suspension", "rest above the yield-number threshold, sinking below it");
   susp->callback([] {
     // A 10 mm, 2700 kg/m3 sphere in a 1500 kg/m3 Bingham fluid (eta 0.1 Pa.s), the 4.19 curve.
@@ -110,7 +113,7 @@ void register_validate(CLI::App& app) {
       SphereRun r;
       r.d = 0.01, r.rho_p = 2700, r.rho_f = 1500, r.eta = 0.1, r.curve = curve, r.dt = 1e-4, r.depth = 0.2;
       r.tau_y = f * thr * 9.81 * r.d * (r.rho_p - r.rho_f);
-      const SuspensionResult s = suspension(r, 1.0);
+      const SuspensionResult s = suspension(r, 1.0);  // 1 s at rest
       fmt::print("{:>10.4g} {:>10.4g} {:>14.6e} {:>12.6e}\n", f, r.tau_y, s.displacement, s.speed_end);
     }
   });
@@ -141,6 +144,37 @@ void register_validate(CLI::App& app) {
       }
       fmt::print("\n");
     }
+  });
+}
+
+void register_pour(CLI::App* val) {
+  struct Opts {
+    int seeds = 3, balls = 68;
+    double eta = 0.7, tau = 138.0, fall = 0.15, end = 0.8, E = 2e11;
+  };
+  auto o = std::make_shared<Opts>();
+  CLI::App* pour = val->add_subcommand("ball-pour", "68 balls of 12.6 mm, 15 cm fall into the paste: final Z range");
+  pour->add_option("--seeds", o->seeds, "seeded runs (default 3)");
+  pour->add_option("--balls", o->balls, "balls (default 68)");
+  pour->add_option("--eta", o->eta, "plastic viscosity (Pa.s), default 0.7");
+  pour->add_option("--tau", o->tau, "yield stress (Pa), default 138");
+  pour->add_option("--end", o->end, "simulated time (s), default 0.8");
+  pour->add_option("--modulus", o->E, "Young's modulus of balls and frame (Pa), default 2e11");
+  pour->callback([o] {
+    SteelBallPaste p;
+    p.tau_y = o->tau;
+    fmt::print("{} balls, 12.6 mm, 8135 kg/m3, fall {} m into paste (tau_y {} Pa, eta_B {} Pa.s, 4.19), box 20 x "
+               "16.5 cm, paste 15 cm; lab: all suspended, Z = 8.5-13.5 cm\n",
+               o->balls, o->fall, p.tau_y, o->eta);
+    fmt::print("{:>5} {:>10} {:>10} {:>8} {:>12}\n", "seed", "Z min cm", "Z max cm", "at rest", "surface cm");
+    double lo = 1e300, hi = -1e300;
+    for (int k = 1; k <= o->seeds; ++k) {
+      const BallPour b = ball_pour(p, o->eta, static_cast<std::uint64_t>(k), o->fall, o->end, o->balls, o->E);
+      lo = std::min(lo, b.z_min), hi = std::max(hi, b.z_max);
+      fmt::print("{:>5} {:>10.2f} {:>10.2f} {:>8} {:>12.3f}\n", k, 100 * b.z_min, 100 * b.z_max, b.at_rest,
+                 100 * b.surface);
+    }
+    fmt::print("all seeds: Z = {:.2f}-{:.2f} cm (centres above the box bottom)\n", 100 * lo, 100 * hi);
   });
 }
 

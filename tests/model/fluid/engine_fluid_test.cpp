@@ -256,3 +256,12 @@ TEST_CASE("fluid CLI: validate water, calibrate viscosity, bad input exits 2, un
   CHECK(s.exit_code == 0);
   CHECK(s.output.find("trapped 0") != std::string::npos);
 }
+
+TEST_CASE("fluid engine: steel balls poured into the paste all stop suspended inside the lab's Z range") {
+  // Reduced: 8 balls instead of 68, 0.6 s (`pastemix validate ball-pour` runs the 68-ball seeds).
+  SteelBallPaste p;
+  const BallPour b = ball_pour(p, 0.7, 1, 0.15, 0.6, 8);
+  CHECK(b.at_rest == 8);
+  CHECK(b.z_min > 0.085);  // lab: all 68 balls between Z = 8.5 and 13.5 cm
+  CHECK(b.z_max < 0.135);
+}
