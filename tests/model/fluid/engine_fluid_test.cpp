@@ -265,3 +265,40 @@ TEST_CASE("fluid engine: steel balls poured into the paste all stop suspended in
   CHECK(b.z_min > 0.085);  // lab: all 68 balls between Z = 8.5 and 13.5 cm
   CHECK(b.z_max < 0.135);
 }
+
+TEST_CASE("fluid switches: buoyancy, yield_term, partial_submergence and surface_rise each change what they say") {
+  // buoyancy = false: water settling goes to rho_p g d^2 / (18 eta) (not (rho_p - rho_f) ...).
+  SphereRun w;
+  w.d = 1e-4, w.rho_p = 2700, w.rho_f = 1000, w.eta = 1e-3, w.curve = {drag::CurveId::stokes, {}}, w.dt = 1e-3;
+  w.depth = 0.05, w.box_half = 0.01, w.floor = false, w.buoyancy = false;
+  const SphereTrace tw = run_single_sphere(w, 0.03);
+  CHECK(-tw.vz.back() == doctest::Approx(2700 * 9.81 * 1e-8 / 18e-3).epsilon(1e-6));
+  // yield_term = false: a sphere held by the yield term sinks without the (pi d/2)^2 tau_y term.
+  SphereRun r = paste_sphere();
+  // 1.2 x the threshold: above 0.0440 (with the term), below 1/18 = 0.0556 (Cd Re' -> 24 alone).
+  r.tau_y = 1.2 * suspension_threshold(kBlend) * 9.81 * r.d * (r.rho_p - r.rho_f);
+  CHECK(suspension(r, 0.2).displacement == 0.0);
+  r.yield_term = false;
+  CHECK(suspension(r, 0.2).displacement > 1e-4);
+  // partial_submergence / surface_rise, on the field directly: a sphere whose centre is 2 mm above the surface.
+  Particles p;
+  p.add(0, 0.005, 2700, {0, 0, 0.102}, {}, {});
+  FluidRegion reg;
+  reg.x_min = reg.y_min = -0.05, reg.x_max = reg.y_max = 0.05, reg.z_bottom = 0, reg.z_surface0 = 0.1;
+  reg.fluid = {1000, 0, 1e-3};
+  FluidField partial({reg});
+  partial.update(p);
+  CHECK(partial.inside(0));
+  CHECK(partial.submerged_volume(0) == doctest::Approx(M_PI * 0.003 * 0.003 * (0.015 - 0.003) / 3.0));
+  CHECK(partial.surface_z(0) == doctest::Approx(0.1 + partial.submerged_volume(0) / 0.01));
+  reg.partial_submergence = false;
+  reg.surface_rise = false;
+  FluidField whole({reg});
+  whole.update(p);
+  CHECK_FALSE(whole.inside(0));  // centre above the surface: nothing under the thesis's rule
+  CHECK(whole.surface_z(0) == 0.1);
+  p.x[0].z = 0.098;
+  whole.update(p);
+  CHECK(whole.submerged_volume(0) == doctest::Approx(4.0 / 3.0 * M_PI * 1.25e-7));
+  CHECK(whole.surface_z(0) == 0.1);  // no rise
+}
