@@ -13,6 +13,7 @@
 
 #include "app/commands.h"
 #include "base/error.h"
+#include "base/staged_output.h"
 #include "lab/drag/settling.h"
 #include "lab/drag/terminal_velocity.h"
 #include "model/fluid/fluid_scene.h"
@@ -151,6 +152,7 @@ void register_pour(CLI::App* val) {
   struct Opts {
     int seeds = 3, balls = 68;
     double eta = 0.7, tau = 138.0, fall = 0.15, end = 0.8, E = 2e11;
+    std::string csv;
   };
   auto o = std::make_shared<Opts>();
   CLI::App* pour = val->add_subcommand("ball-pour", "68 balls of 12.6 mm, 15 cm fall into the paste: final Z range");
@@ -160,6 +162,7 @@ void register_pour(CLI::App* val) {
   pour->add_option("--tau", o->tau, "yield stress (Pa), default 138");
   pour->add_option("--end", o->end, "simulated time (s), default 0.8");
   pour->add_option("--modulus", o->E, "Young's modulus of balls and frame (Pa), default 2e11");
+  pour->add_option("--csv", o->csv, "write seed,ball,x_m,y_m,z_m of every final position (for the maps)");
   pour->callback([o] {
     SteelBallPaste p;
     p.tau_y = o->tau;
@@ -168,13 +171,22 @@ void register_pour(CLI::App* val) {
                o->balls, o->fall, p.tau_y, o->eta);
     fmt::print("{:>5} {:>10} {:>10} {:>8} {:>12}\n", "seed", "Z min cm", "Z max cm", "at rest", "surface cm");
     double lo = 1e300, hi = -1e300;
+    std::string rows = "seed,ball,x_m,y_m,z_m\n";
     for (int k = 1; k <= o->seeds; ++k) {
       const BallPour b = ball_pour(p, o->eta, static_cast<std::uint64_t>(k), o->fall, o->end, o->balls, o->E);
+      for (std::size_t a = 0; a < b.z.size(); ++a)
+        rows += fmt::format("{},{},{:.6f},{:.6f},{:.6f}\n", k, a, b.x[a], b.y[a], b.z[a]);
       lo = std::min(lo, b.z_min), hi = std::max(hi, b.z_max);
       fmt::print("{:>5} {:>10.2f} {:>10.2f} {:>8} {:>12.3f}\n", k, 100 * b.z_min, 100 * b.z_max, b.at_rest,
                  100 * b.surface);
     }
     fmt::print("all seeds: Z = {:.2f}-{:.2f} cm (centres above the box bottom)\n", 100 * lo, 100 * hi);
+    if (!o->csv.empty()) {
+      StagedOutput staged;
+      staged.write_text(o->csv, rows);
+      staged.commit();
+      fmt::print("wrote {}\n", o->csv);
+    }
   });
 }
 

@@ -178,6 +178,8 @@ BallPour ball_pour(const SteelBallPaste& p, double eta_B, std::uint64_t seed, do
   const auto& pt = w.particles();
   b.z_min = 1e300, b.z_max = -1e300;
   for (std::size_t a = 0; a < pt.size(); ++a) {
+    b.x.push_back(pt.x[a].x);
+    b.y.push_back(pt.x[a].y);
     b.z.push_back(pt.x[a].z);
     b.z_min = std::min(b.z_min, pt.x[a].z);
     b.z_max = std::max(b.z_max, pt.x[a].z);

@@ -77,7 +77,7 @@ namespace pastemix::model::fluid {
 // The funnel is not modelled: the balls start at rest, seeded random and non-overlapping, in a cylinder of
 // radius 35 mm on the box axis whose lowest ball bottom is `fall` above the paste surface.
 struct BallPour {
-  std::vector<double> z;  // m, final centre heights above the box bottom
+  std::vector<double> x, y, z;  // m, final centre positions (box corner at the origin, z above its bottom)
   double z_min = 0.0, z_max = 0.0;
   int at_rest = 0;        // balls with exactly zero velocity at the end
   double surface = 0.0;   // m, final free surface
