@@ -1,8 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "model/scene.h"
 
-#include "model/fluid/fluid_scene.h"
-
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -17,6 +15,7 @@
 #include "base/h5.h"
 #include "base/params.h"
 #include "base/psd.h"
+#include "model/fluid/fluid_scene.h"
 #include "model/insert/fill.h"
 #include "model/neighbor.h"
 
