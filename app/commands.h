@@ -14,5 +14,7 @@ void register_lab_drag_commands(CLI::App& lab);
 void register_model_commands(CLI::App& app);
 // `pastemix maps ...` and `pastemix score ...` (app/cmd_analysis.cpp).
 void register_analysis_commands(CLI::App& app);
+// `pastemix validate ...`, `pastemix calibrate viscosity` (fluid, app/cmd_fluid.cpp).
+void register_fluid_commands(CLI::App& app);
 
 }  // namespace pastemix::app

@@ -63,6 +63,16 @@ RunOutput::RunOutput(const std::filesystem::path& h5_path, std::string h5_final_
   std::vector<std::string> names;
   for (const auto& m : scene.materials) names.push_back(m.name);
   h5_->write_strings("/materials", names);
+  std::vector<double> densities;
+  for (const auto& m : scene.materials) densities.push_back(m.density);
+  h5_->write("/material_density", densities);
+  // Fluid (only with [[fluid]]): the first region's fluid for the analysis layer.
+  if (!scene.fluid.empty()) {
+    const auto& f = scene.fluid.front();
+    h5_->attribute("/", "fluid_density", f.fluid.density);
+    h5_->attribute("/", "fluid_solids_fraction", f.solids_fraction);
+    h5_->attribute("/", "fluid_region_count", static_cast<std::int64_t>(scene.fluid.size()));
+  }
 }
 
 RunOutput::~RunOutput() = default;
@@ -92,6 +102,7 @@ void RunOutput::sample(const World& w) {
   el_.push_back(e.elastic);
   npair_.push_back(e.pair_contacts);
   nwall_.push_back(e.wall_contacts);
+  if (const auto* f = w.fluid()) surface_.insert(surface_.end(), f->surfaces().begin(), f->surfaces().end());
 }
 
 std::string RunOutput::finish(const World& w, double wall_seconds, int threads) {
@@ -103,6 +114,11 @@ std::string RunOutput::finish(const World& w, double wall_seconds, int threads) 
   h5_->write("/timeseries/elastic", el_);
   h5_->write("/timeseries/pair_contacts", npair_);
   h5_->write("/timeseries/wall_contacts", nwall_);
+  if (const auto* f = w.fluid()) {
+    const std::uint64_t r = f->regions().size();
+    h5_->write("/timeseries/fluid_surface_z", surface_, {t_.size(), r});
+    h5_->attribute("/", "fluid_surface_z", f->surface_z(0));
+  }
   const Profile& prof = w.profile();
   std::vector<std::string> names(Profile::names.begin(), Profile::names.end());
   std::vector<double> secs(prof.seconds.begin(), prof.seconds.end());

@@ -6,6 +6,10 @@
 //                             particle_count, and the resolved Plan/defaults: skin_m, rotation (0/1),
 //                             history_width, output_interval_s, energy_interval_s
 //   /materials                (M strings) material names; snapshots' `material` indexes this list
+//   /material_density         (M) kg/m3, same order as /materials
+//   fluid (only with [[fluid]]): root attributes fluid_surface_z (m, final surface of the first region),
+//                             fluid_density (kg/m3), fluid_solids_fraction (-) of the first region,
+//                             fluid_region_count; /timeseries/fluid_surface_z (samples x regions, m)
 //   /snapshots/time           (S) s
 //   /snapshots/NNNNNN/        one group per snapshot (attribute time_s):
 //       position (N x 3, m), velocity (N x 3, m/s), radius (N, m), id (N, int64), material (N, int32),
@@ -54,6 +58,7 @@ class RunOutput {
   std::vector<std::size_t> snap_counts_;
   std::vector<double> t_, ke_, rot_, pot_, el_;
   std::vector<std::int64_t> npair_, nwall_;
+  std::vector<double> surface_;  // m, fluid surface per sample and region (row-major)
 };
 
 std::string scene_hash(const std::string& text);

@@ -15,6 +15,7 @@
 #include "base/h5.h"
 #include "base/params.h"
 #include "base/psd.h"
+#include "model/fluid/fluid_scene.h"
 #include "model/insert/fill.h"
 #include "model/neighbor.h"
 
@@ -260,9 +261,9 @@ Scene parse_scene(std::string_view text, const std::string& display_path) {
   if (auto ph = root.optional_table("physics")) {
     s.config.gravity = vec_or(*ph, "gravity", s.config.gravity);
     rotation_switch = ph->boolean_or("rotation", true);
-    if (ph->has("fluid")) ph->fail("fluid", "fluid forces are not implemented yet (a later issue)");
   }
-  if (root.has("fluid")) root.fail("fluid", "the [fluid] table is not implemented yet (a later issue)");
+  s.fluid = fluid::read_fluid_regions(root, display_path);  // fluid hook
+  s.plan.fluid = !s.fluid.empty();
 
   const Params contact = root.table("contact");
   s.plan.law = contact.choice("law", contact_law_names());
@@ -547,7 +548,9 @@ Scene load_scene(const std::filesystem::path& path) {
 }
 
 World make_world(const Scene& s) {
-  return World(s.config, s.materials, s.laws, s.particles, s.walls, s.plan.history_width);
+  World w(s.config, s.materials, s.laws, s.particles, s.walls, s.plan.history_width);
+  if (s.plan.fluid) w.set_fluid(std::make_shared<fluid::FluidField>(s.fluid));  // fluid hook
+  return w;
 }
 
 }  // namespace pastemix::model

@@ -39,6 +39,7 @@
 //   seed = 7                       # optional, default = scene seed + factory index
 //   [[factory.psd]]                # sieve intervals (m) and mass fractions (sum 1)
 //   d_min = 2.5e-3  d_max = 5e-3  fraction = 1.0
+//   [[fluid]]                      # fluid regions (several allowed): keys in model/fluid/fluid_scene.h
 //   [[wall]]                       # name, type, material, then the type's keys:
 //   type = "plane"     point = [..]  normal = [..]           (normal towards the particles)
 //   type = "box"       min = [..]  max = [..]                (open top: floor + 4 sides)
@@ -60,6 +61,7 @@
 #include <string>
 #include <vector>
 
+#include "model/fluid/field.h"
 #include "model/world.h"
 
 namespace pastemix::model {
@@ -70,7 +72,7 @@ struct Plan {
   bool rotation = true;       // angular arrays allocated and integrated
   bool tangential = true;     // some pair has friction -> tangential history
   int history_width = 0;      // doubles per contact
-  bool fluid = false;         // the [fluid] table (later issue); absent -> no fluid arrays or pass
+  bool fluid = false;         // some [[fluid]] region (model/fluid/fluid_scene.h); absent -> no fluid arrays or pass
 };
 
 struct Scene {
@@ -87,6 +89,7 @@ struct Scene {
   LawTable laws;
   Particles particles;
   std::vector<Wall> walls;
+  std::vector<fluid::FluidRegion> fluid;  // [[fluid]] regions (empty: no fluid pass)
 };
 
 Scene load_scene(const std::filesystem::path& path);

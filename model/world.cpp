@@ -15,8 +15,10 @@
 // |omega| shrinks by h M/I). That is the explicit law's own torque whenever the spin survives the step,
 // and it removes the chatter at omega -> 0 that makes piles under the raw law never come to rest.
 //
-// The fluid pass of the later issue slots in as a per-particle force stage after the walls, restricted to
-// the particles inside the fluid region; it needs nothing from the stages above but x, v and radius.
+// Fluid hook (model/fluid/field.h, only with [[fluid]]): after the forces at t + dt, fluid->update() finds
+// the particles in a region and their submerged volumes (and raises the surface); the half kicks of those
+// particles are replaced by the fluid kick (buoyancy + drag integrated stably, never reversing v). Timed
+// into the integration stage.
 //
 // Every pass writes outputs indexed by the loop variable only (no atomics, no reductions into shared
 // sums), so the trajectory is bitwise identical for any thread count.
@@ -89,7 +91,10 @@ void World::compute_forces() {
 
 // Half kick of one particle: v += h a; omega += h tau / I, then the non-reversing rolling friction.
 inline void World::kick_one(long a, double h, bool rot, bool roll) {
-  p_.v[a] += (p_.f[a] * p_.inv_mass[a] + cfg_.gravity) * h;
+  if (fluid_ && fluid_->inside(a))  // fluid hook
+    p_.v[a] = fluid_->kick(a, p_.v[a], p_.f[a] + cfg_.gravity * p_.mass[a], p_.mass[a], p_.radius[a], h, cfg_.gravity);
+  else
+    p_.v[a] += (p_.f[a] * p_.inv_mass[a] + cfg_.gravity) * h;
   if (rot) {
     Vec3 w = p_.omega[a] + p_.torque[a] * (h * p_.inv_inertia[a]);
     if (roll && p_.rolling_capacity[a] > 0.0) {
@@ -140,6 +145,7 @@ void World::step() {
   }
   if (!started_) {
     compute_forces();
+    if (fluid_) fluid_->update(p_);  // fluid hook
     started_ = true;
   }
   const double h = 0.5 * cfg_.dt;
@@ -169,6 +175,7 @@ void World::step() {
   compute_forces();
   {
     StageTimer timer{profile_.seconds[Profile::integration]};
+    if (fluid_) fluid_->update(p_);  // fluid hook
     kick(h);
   }
 }

@@ -4,10 +4,12 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "model/contacts.h"
+#include "model/fluid/field.h"
 #include "model/material.h"
 #include "model/particles.h"
 #include "model/walls.h"
@@ -63,6 +65,9 @@ class World {
   const std::vector<Material>& materials() const { return materials_; }
   const PairList& pairs() const { return pairs_; }
   Profile& profile() { return profile_; }
+  // --- fluid hook (model/fluid/field.h): null without [[fluid]] -> no fluid pass, nothing to pay. ---
+  void set_fluid(std::shared_ptr<fluid::FluidField> field) { fluid_ = std::move(field); }
+  const fluid::FluidField* fluid() const { return fluid_.get(); }
   const Profile& profile() const { return profile_; }
 
  private:
@@ -92,6 +97,7 @@ class World {
   bool started_ = false;
   // First problem found during a step (dense index, or -1) and its cause, reported by check().
   mutable long bad_index_ = -1;
+  std::shared_ptr<fluid::FluidField> fluid_;  // fluid hook
 };
 
 }  // namespace pastemix::model

@@ -1,0 +1,227 @@
+// SPDX-License-Identifier: MIT
+// Fluid validations and calibration through the engine (model/fluid/validations.h):
+//   pastemix validate water [--dt 1e-7,1e-6,...]                 settling in water: error vs time step
+//   pastemix validate settling DATASET --curve NAME [--params parameters.toml] [--rows N] [--dt S]
+//                                                                 121 Valentik & Whitmore spheres, DEM vs lab
+//   pastemix validate suspension                                 rest above / sinking below the yield number
+//   pastemix validate steel-balls [--eta 0.7] [--tau 138]        settling distance vs falling height
+//   pastemix calibrate viscosity --ball 12.6 --height 255 --distance D   eta_B from one ball (mm in, Pa.s out)
+#include <cmath>
+#include <memory>
+
+#include <fmt/format.h>
+
+#include "app/commands.h"
+#include "base/error.h"
+#include "base/staged_output.h"
+#include "lab/drag/settling.h"
+#include "lab/drag/terminal_velocity.h"
+#include "model/fluid/fluid_scene.h"
+#include "model/fluid/validations.h"
+
+namespace pastemix::app {
+
+namespace {
+
+using namespace pastemix::model::fluid;
+
+drag::DragCurve curve_option(const std::string& name, const std::string& params) {
+  auto id = drag::find_curve(name);
+  if (!id) throw InputError("--curve", 0, "curve", fmt::format("unknown drag curve '{}'", name));
+  if (drag::curve_info(*id).n_coefficients == 0) return {*id, {}};
+  if (params.empty())
+    throw InputError("--curve", 0, "curve", fmt::format("curve {} needs --params parameters.toml (lab reduce)", name));
+  return read_chosen_curve(params, name);
+}
+
+void register_pour(CLI::App* val);
+
+void register_validate(CLI::App& app) {
+  CLI::App* val = app.add_subcommand("validate", "fluid validations through the engine");
+  val->require_subcommand(1);
+
+  auto dts = std::make_shared<std::vector<double>>(std::vector<double>{1e-7, 1e-6, 1e-5, 2.5e-5, 1e-4, 1e-3});
+  CLI::App* water = val->add_subcommand("water", "0.1 mm, 2700 kg/m3 settling in water vs v_t (1 - exp(-t/tau))");
+  water->add_option("--dt", *dts, "time steps (s)")->delimiter(',');
+  water->callback([dts] {
+    fmt::print("settling of a 0.1 mm, 2700 kg/m3 sphere in water (Stokes), engine vs analytic, t in (0, 10 tau]\n");
+    fmt::print("{:>10} {:>8} {:>14} {:>10}\n", "dt (s)", "steps", "max rel error", "dt/tau");
+    for (double dt : *dts) {
+      const WaterSettling w = water_settling(dt);
+      fmt::print("{:>10.3g} {:>8} {:>14.3e} {:>10.3g}\n", dt, w.steps, w.max_rel_error, dt / w.tau);
+    }
+  });
+
+  struct SettleOpts {
+    std::string dataset, curve = "power_blend", params;
+    int rows = 0;
+    double dt = 1e-3, column = 3.0;
+  };
+  auto so = std::make_shared<SettleOpts>();
+  CLI::App* settle = val->add_subcommand("settling", "DEM terminal velocities of the Valentik & Whitmore spheres");
+  settle->add_option("dataset", so->dataset, "dataset folder (valentik_whitmore_1965_*.csv)")->required();
+  settle->add_option("--curve", so->curve, "drag curve name (default power_blend)");
+  settle->add_option("--params", so->params, "parameters.toml with the curve's coefficients (lab reduce)");
+  settle->add_option("--rows", so->rows, "only the first N spheres (0 = all)");
+  settle->add_option("--dt", so->dt, "time step (s), default 1e-3");
+  settle->add_option("--column", so->column, "column height (m), default 3");
+  settle->callback([so] {
+    const drag::DragCurve curve = curve_option(so->curve, so->params);
+    const auto data = lab::drag::read_settling_dataset(so->dataset);
+    fmt::print("{:>4} {:>3} {:>8} {:>10} {:>10} {:>9} {:>8} {}\n", "row", "sus", "d (mm)", "v_lab", "v_dem",
+               "diff %", "steady%", "outcome");
+    double worst = 0.0;
+    int worst_row = 0, trapped = 0, compared = 0, inconsistent = 0;
+    const std::size_t n = so->rows > 0 ? std::min<std::size_t>(so->rows, data.spheres.size()) : data.spheres.size();
+    for (std::size_t k = 0; k < n; ++k) {
+      const auto& sp = data.spheres[k];
+      const auto lab = lab::drag::solve_terminal_velocity(curve, sp.sphere, 9.81);
+      SphereRun r;
+      r.d = sp.sphere.d, r.rho_p = sp.sphere.rho_p, r.rho_f = sp.sphere.rho_f, r.tau_y = sp.sphere.tau_y;
+      r.eta = sp.sphere.eta_B, r.curve = curve, r.dt = so->dt;
+      const ColumnSettling c = column_settling(r, so->column);
+      // Trapped: at rest in the DEM although the force balance has no rest state (the lab says it moves).
+      const bool held = lab.outcome == lab::drag::SettlingOutcome::suspended;
+      trapped += c.trapped && !held;
+      std::string outcome = lab::drag::to_string(lab.outcome);
+      double diff = NAN;
+      if (lab.outcome == lab::drag::SettlingOutcome::settling) {
+        diff = 100.0 * (c.v_final / lab.v - 1.0);
+        ++compared;
+        if (std::abs(diff) > worst) worst = std::abs(diff), worst_row = sp.row_id;
+      } else {
+        ++inconsistent;
+      }
+      if (c.trapped) outcome += held ? " (DEM at rest too)" : " TRAPPED";
+      if (!c.trapped && held) outcome += " (DEM MOVES)";
+      fmt::print("{:>4} {:>3} {:>8.2f} {:>10.5f} {:>10.5f} {:>9.4f} {:>8.4f} {}\n", sp.row_id, sp.suspension,
+                 1e3 * sp.sphere.d, lab.v, c.v_final, diff, 100.0 * c.v_change, outcome);
+    }
+    fmt::print("curve {}: {} spheres, {} compared, max |DEM/lab - 1| = {:.4f} % (row {}), trapped {}, "
+               "no consistent lab solution {}\n",
+               so->curve, n, compared, worst, worst_row, trapped, inconsistent);
+  });
+
+  register_pour(val);
+  CLI::App* susp = val->add_subcommand("suspension", "rest above the yield-number threshold, sinking below it");
+  susp->callback([] {
+    // A 10 mm, 2700 kg/m3 sphere in a 1500 kg/m3 Bingham fluid (eta 0.1 Pa.s), the 4.19 curve.
+    const drag::DragCurve curve{drag::CurveId::published_4_19, {}};
+    const double thr = suspension_threshold(curve);
+    fmt::print("threshold tau_y / (g d (rho_p - rho_f)) = {:.6f} (engine rest drag, curve 4.19)\n", thr);
+    fmt::print("{:>10} {:>10} {:>14} {:>12}\n", "Y/Y_c", "tau_y", "displacement", "speed");
+    for (double f : {2.0, 1.01, 1.001, 0.999, 0.99, 0.5}) {
+      SphereRun r;
+      r.d = 0.01, r.rho_p = 2700, r.rho_f = 1500, r.eta = 0.1, r.curve = curve, r.dt = 1e-4, r.depth = 0.2;
+      r.tau_y = f * thr * 9.81 * r.d * (r.rho_p - r.rho_f);
+      const SuspensionResult s = suspension(r, 1.0);  // 1 s at rest
+      fmt::print("{:>10.4g} {:>10.4g} {:>14.6e} {:>12.6e}\n", f, r.tau_y, s.displacement, s.speed_end);
+    }
+  });
+
+  struct BallOpts {
+    double eta = 0.7, tau = 138.0, dt = 2e-5;
+  };
+  auto bo = std::make_shared<BallOpts>();
+  CLI::App* balls = val->add_subcommand("steel-balls", "Table 4.4: settling distance vs falling height");
+  balls->add_option("--eta", bo->eta, "paste plastic viscosity (Pa.s), default 0.7 (thesis)");
+  balls->add_option("--tau", bo->tau, "paste yield stress (Pa), default 138 (slump reduction)");
+  balls->add_option("--dt", bo->dt, "time step (s)");
+  balls->callback([bo] {
+    SteelBallPaste p;
+    p.tau_y = bo->tau, p.dt = bo->dt;
+    fmt::print("steel balls (8135 kg/m3) in paste: rho 1843 kg/m3, tau_y {} Pa, eta_B {} Pa.s, curve 4.19, mould "
+               "75 x 150 mm, dt {} s\nsettling distance = initial paste surface to the ball's bottom at rest (mm)\n",
+               p.tau_y, bo->eta, p.dt);
+    const std::vector<double> heights{0.0, 0.105, 0.150, 0.255};
+    fmt::print("{:>10}", "ball (mm)");
+    for (double h : heights) fmt::print(" {:>9}", fmt::format("H={:.0f}", 1e3 * h));
+    fmt::print("\n");
+    for (double d : {0.008, 0.0126, 0.016}) {
+      fmt::print("{:>10.1f}", 1e3 * d);
+      for (double h : heights) {
+        const BallDrop b = steel_ball_drop(p, d, h, bo->eta);
+        fmt::print(" {:>9}", fmt::format("{:.2f}{}", 1e3 * b.distance, b.reached_bottom ? "*" : ""));
+      }
+      fmt::print("\n");
+    }
+  });
+}
+
+void register_pour(CLI::App* val) {
+  struct Opts {
+    int seeds = 3, balls = 68;
+    double eta = 0.7, tau = 138.0, fall = 0.15, end = 0.8, E = 2e11;
+    std::string csv;
+  };
+  auto o = std::make_shared<Opts>();
+  CLI::App* pour = val->add_subcommand("ball-pour", "68 balls of 12.6 mm, 15 cm fall into the paste: final Z range");
+  pour->add_option("--seeds", o->seeds, "seeded runs (default 3)");
+  pour->add_option("--balls", o->balls, "balls (default 68)");
+  pour->add_option("--eta", o->eta, "plastic viscosity (Pa.s), default 0.7");
+  pour->add_option("--tau", o->tau, "yield stress (Pa), default 138");
+  pour->add_option("--end", o->end, "simulated time (s), default 0.8");
+  pour->add_option("--modulus", o->E, "Young's modulus of balls and frame (Pa), default 2e11");
+  pour->add_option("--csv", o->csv, "write seed,ball,x_m,y_m,z_m of every final position (for the maps)");
+  pour->callback([o] {
+    SteelBallPaste p;
+    p.tau_y = o->tau;
+    fmt::print("{} balls, 12.6 mm, 8135 kg/m3, fall {} m into paste (tau_y {} Pa, eta_B {} Pa.s, 4.19), box 20 x "
+               "16.5 cm, paste 15 cm; lab: all suspended, Z = 8.5-13.5 cm\n",
+               o->balls, o->fall, p.tau_y, o->eta);
+    fmt::print("{:>5} {:>10} {:>10} {:>8} {:>12}\n", "seed", "Z min cm", "Z max cm", "at rest", "surface cm");
+    double lo = 1e300, hi = -1e300;
+    std::string rows = "seed,ball,x_m,y_m,z_m\n";
+    for (int k = 1; k <= o->seeds; ++k) {
+      const BallPour b = ball_pour(p, o->eta, static_cast<std::uint64_t>(k), o->fall, o->end, o->balls, o->E);
+      for (std::size_t a = 0; a < b.z.size(); ++a)
+        rows += fmt::format("{},{},{:.6f},{:.6f},{:.6f}\n", k, a, b.x[a], b.y[a], b.z[a]);
+      lo = std::min(lo, b.z_min), hi = std::max(hi, b.z_max);
+      fmt::print("{:>5} {:>10.2f} {:>10.2f} {:>8} {:>12.3f}\n", k, 100 * b.z_min, 100 * b.z_max, b.at_rest,
+                 100 * b.surface);
+    }
+    fmt::print("all seeds: Z = {:.2f}-{:.2f} cm (centres above the box bottom)\n", 100 * lo, 100 * hi);
+    if (!o->csv.empty()) {
+      StagedOutput staged;
+      staged.write_text(o->csv, rows);
+      staged.commit();
+      fmt::print("wrote {}\n", o->csv);
+    }
+  });
+}
+
+void register_calibrate(CLI::App& app) {
+  CLI::App* cal = app.add_subcommand("calibrate", "calibrations through the engine");
+  cal->require_subcommand(1);
+  struct Opts {
+    double ball = 12.6, height = 255.0, distance = 0.0, tau = 138.0, dt = 2e-5;
+  };
+  auto o = std::make_shared<Opts>();
+  CLI::App* visc = cal->add_subcommand("viscosity", "paste plastic viscosity from a steel ball's settling distance");
+  visc->add_option("--ball", o->ball, "ball diameter (mm), default 12.6");
+  visc->add_option("--height", o->height, "falling height of the ball's bottom above the paste (mm), default 255");
+  visc->add_option("--distance", o->distance, "measured settling distance: paste surface to ball bottom (mm)")
+      ->required();
+  visc->add_option("--tau", o->tau, "paste yield stress (Pa), default 138");
+  visc->add_option("--dt", o->dt, "time step (s)");
+  visc->callback([o] {
+    if (!(o->ball > 0.0)) throw InputError("--ball", 0, "ball", "must be positive (mm)");
+    if (!(o->height >= 0.0)) throw InputError("--height", 0, "height", "must be non-negative (mm)");
+    if (!(o->distance > 0.0)) throw InputError("--distance", 0, "distance", "must be positive (mm)");
+    SteelBallPaste p;
+    p.tau_y = o->tau, p.dt = o->dt;
+    const Calibration c = calibrate_viscosity(p, 1e-3 * o->ball, 1e-3 * o->height, 1e-3 * o->distance);
+    fmt::print("eta_B = {:.6g} Pa.s (distance {:.4f} mm at that viscosity; {} engine runs; tau_y {} Pa, rho 1843, "
+               "ball {} mm, height {} mm)\n",
+               c.eta, 1e3 * c.distance, c.runs, p.tau_y, o->ball, o->height);
+  });
+}
+
+}  // namespace
+
+void register_fluid_commands(CLI::App& app) {
+  register_validate(app);
+  register_calibrate(app);
+}
+
+}  // namespace pastemix::app

@@ -1,0 +1,81 @@
+// SPDX-License-Identifier: MIT
+#include "model/fluid/field.h"
+
+#include <cmath>
+
+#include "model/fluid/buoyancy.h"
+
+namespace pastemix::model::fluid {
+
+FluidField::FluidField(std::vector<FluidRegion> regions) : regions_(std::move(regions)) {
+  for (const FluidRegion& r : regions_) surface_.push_back(r.z_surface0);
+}
+
+namespace {
+
+// Volume (m3) of a sphere of radius r at height z that lies between the bottom and the surface.
+double wetted_volume(const FluidRegion& reg, double z, double r, double z_s, bool partial) {
+  if (!partial) {
+    // The thesis's rule: all or nothing, by the centre.
+    return (z < z_s && z > reg.z_bottom) ? 4.0 / 3.0 * kPi * r * r * r : 0.0;
+  }
+  return fluid::submerged_volume(z, r, z_s) - fluid::submerged_volume(z, r, reg.z_bottom);
+}
+
+}  // namespace
+
+void FluidField::update(const Particles& p) {
+  const std::size_t n = p.size();
+  region_of_.assign(n, -1);
+  v_sub_.assign(n, 0.0);
+  std::vector<double> wet(regions_.size(), 0.0);
+  for (std::size_t a = 0; a < n; ++a) {
+    const Vec3& x = p.x[a];
+    for (std::size_t k = 0; k < regions_.size(); ++k) {
+      const FluidRegion& reg = regions_[k];
+      if (!reg.contains_xy(x.x, x.y)) continue;
+      const double vs = wetted_volume(reg, x.z, p.radius[a], surface_[k], reg.partial_submergence);
+      if (vs <= 0.0) continue;
+      region_of_[a] = static_cast<int>(k);
+      v_sub_[a] = vs;
+      wet[k] += vs;
+      break;  // the first region that holds the particle owns it
+    }
+  }
+  for (std::size_t k = 0; k < regions_.size(); ++k)
+    if (regions_[k].surface_rise) surface_[k] = regions_[k].z_surface0 + wet[k] / regions_[k].area();
+}
+
+Vec3 FluidField::kick(long a, const Vec3& v, const Vec3& F, double mass, double radius, double h,
+                      const Vec3& g) const {
+  const FluidRegion& reg = regions_[region_of_[a]];
+  const double vs = v_sub_[a];
+  const double volume = 4.0 / 3.0 * kPi * radius * radius * radius;
+  const double phi = std::min(1.0, vs / volume);  // submerged fraction
+  Vec3 force = F;
+  if (reg.buoyancy) force -= g * (reg.fluid.density * vs);
+  const double d = 2.0 * radius;
+  // D(s) with or without the yield term (pi d / 2)^2 tau_y (the switch keeps tau_y inside Re').
+  const double yield_off = reg.yield_term ? 0.0 : 0.25 * kPi * kPi * d * d * reg.fluid.yield_stress;
+  auto cd = [&](double re) { return reg.curve.cd(re); };
+  auto magnitude = [&](double s) { return drag_magnitude(reg.fluid, cd, s, d) - yield_off; };
+  // m dv/dt = F - phi D  <=>  (m/phi) dv/dt = F/phi - D: the kernel's kick with scaled mass and force.
+  const double m_eff = mass / phi;
+  const fluid::Vec Fv{force.x / phi, force.y / phi, force.z / phi};
+  const fluid::Vec v0{v.x, v.y, v.z};
+  // drag_kick_implicit of bingham_drag.h, with `magnitude` in place of drag_magnitude (the yield switch).
+  const double d0 = magnitude(kRestSpeed);
+  const double s0 = norm(v);
+  double s_eval = s0;
+  fluid::Vec out = v0;
+  for (int it = 0; it < 3; ++it) {
+    DragSplit split{d0, 0.0};
+    const double s = s_eval > 1e3 * kRestSpeed ? s_eval : 1e-9;
+    split.k = std::max(0.0, (magnitude(s) - d0) / s);
+    out = drag_kick(v0, Fv, m_eff, h, split);
+    s_eval = 0.5 * (s0 + std::sqrt(out[0] * out[0] + out[1] * out[1] + out[2] * out[2]));
+  }
+  return {out[0], out[1], out[2]};
+}
+
+}  // namespace pastemix::model::fluid

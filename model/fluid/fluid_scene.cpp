@@ -1,0 +1,103 @@
+// SPDX-License-Identifier: MIT
+#include "model/fluid/fluid_scene.h"
+
+#include <filesystem>
+
+#include <fmt/format.h>
+
+#include "base/error.h"
+
+namespace pastemix::model::fluid {
+
+namespace {
+
+drag::CurveId curve_by_name(const Params& p, std::string_view key, const std::string& name) {
+  auto id = drag::find_curve(name);
+  if (!id) {
+    std::string known;
+    for (const auto& c : drag::kCurves) known += fmt::format("{}{}", known.empty() ? "" : ", ", c.name);
+    p.fail(key, fmt::format("unknown drag curve '{}' (known: {})", name, known));
+  }
+  return *id;
+}
+
+drag::DragCurve read_curve(const Params& f, const std::string& scene_path, const std::string& fallback) {
+  if (f.has("curve") && f.has("curve_from")) f.fail("curve_from", "give either curve or curve_from, not both");
+  drag::DragCurve c;
+  if (f.has("curve_from")) {
+    std::filesystem::path file = f.string("curve_from");
+    if (file.is_relative()) file = std::filesystem::path(scene_path).parent_path() / file;
+    if (!std::filesystem::exists(file)) f.fail("curve_from", fmt::format("no such file: {}", file.string()));
+    return read_chosen_curve(file.string());
+  }
+  const std::string name = f.string_or("curve", fallback);
+  c.id = curve_by_name(f, "curve", name);
+  const auto& info = c.info();
+  if (info.n_coefficients > 0) {
+    c.coefficients = f.numbers("coefficients");
+    const auto why = drag::check_coefficients(c.id, c.coefficients);
+    if (!why.empty())
+      f.fail("coefficients", fmt::format("{} for curve {} ({} coefficients: {})", why, name, info.n_coefficients,
+                                         info.formula));
+  } else if (f.has("coefficients")) {
+    f.fail("coefficients", fmt::format("curve {} takes no coefficients", name));
+  }
+  return c;
+}
+
+}  // namespace
+
+drag::DragCurve read_chosen_curve(const std::string& parameters_toml, const std::string& wanted) {
+  const Params root = Params::parse_file(parameters_toml);
+  const Params dc = root.table("drag_curve");
+  const Params chosen = dc.table("chosen");
+  const std::string name = wanted.empty() ? chosen.string("text") : wanted;
+  drag::DragCurve c;
+  c.id = curve_by_name(chosen, "text", name);
+  const auto& info = c.info();
+  if (info.n_coefficients > 0) {
+    const Params t = dc.table(name);
+    for (int i = 0; i < info.n_coefficients; ++i)
+      c.coefficients.push_back(t.table(info.coefficient_names[static_cast<std::size_t>(i)]).number("value"));
+    const auto why = drag::check_coefficients(c.id, c.coefficients);
+    if (!why.empty()) t.fail(info.coefficient_names[0], std::string(why));
+  }
+  // Not finish()ed: the file holds every lab parameter; only the curve is read here.
+  return c;
+}
+
+std::vector<FluidRegion> read_fluid_regions(const Params& root, const std::string& scene_path) {
+  std::vector<FluidRegion> out;
+  for (const Params& f : root.tables("fluid")) {
+    FluidRegion r;
+    r.name = f.string_or("name", fmt::format("fluid{}", out.size()));
+    const auto x = f.numbers("x", 2), y = f.numbers("y", 2);
+    if (!(x[1] > x[0])) f.fail("x", "x = [min, max] needs max > min");
+    if (!(y[1] > y[0])) f.fail("y", "y = [min, max] needs max > min");
+    r.x_min = x[0], r.x_max = x[1], r.y_min = y[0], r.y_max = y[1];
+    r.z_bottom = f.number("bottom");
+    r.z_surface0 = f.number("surface");
+    if (!(r.z_surface0 > r.z_bottom)) f.fail("surface", "the free surface must lie above the bottom");
+    r.fluid.density = f.number("density", Range::positive);
+    r.rheology = f.choice("rheology", {"newtonian", "bingham"});
+    if (r.rheology == "newtonian") {
+      r.fluid.plastic_viscosity = f.number("viscosity", Range::positive);
+      r.curve = read_curve(f, scene_path, "stokes");
+    } else {
+      r.fluid.yield_stress = f.number("yield_stress", Range::non_negative);
+      r.fluid.plastic_viscosity = f.number("plastic_viscosity", Range::positive);
+      if (!f.has("curve") && !f.has("curve_from"))
+        f.fail("curve", "a bingham fluid needs curve = NAME (with coefficients) or curve_from = FILE");
+      r.curve = read_curve(f, scene_path, "");
+    }
+    r.solids_fraction = f.number_or("solids_fraction", 0.0, Range::fraction);
+    r.buoyancy = f.boolean_or("buoyancy", true);
+    r.yield_term = f.boolean_or("yield_term", true);
+    r.partial_submergence = f.boolean_or("partial_submergence", true);
+    r.surface_rise = f.boolean_or("surface_rise", true);
+    out.push_back(std::move(r));
+  }
+  return out;
+}
+
+}  // namespace pastemix::model::fluid

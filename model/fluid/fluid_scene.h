@@ -1,0 +1,38 @@
+// SPDX-License-Identifier: MIT
+// [[fluid]] tables of a scene -> FluidRegion (all values SI). Several regions are allowed; a particle belongs
+// to the first region (in file order) that holds it.
+//
+//   [[fluid]]
+//   name = "paste"                       # optional
+//   x = [-0.1, 0.1]   y = [-0.0825, 0.0825]   # m, horizontal extent of the box
+//   bottom = 0.0                         # m, bottom of the fluid
+//   surface = 0.15                       # m, free surface without rock (it rises as rock enters)
+//   density = 1843                       # kg/m3
+//   rheology = "bingham"                 # or "newtonian" (then: viscosity = 1e-3 Pa.s, curve = "stokes")
+//   yield_stress = 138                   # Pa
+//   plastic_viscosity = 0.7              # Pa.s
+//   curve = "power_blend"  coefficients = [k, a, b, c, n]    # or curve = "published_4_19" / "stokes", or
+//   curve_from = "parameters.toml"       # lab reduce output (relative to the scene file): drag_curve.chosen
+//   solids_fraction = 0.75               # -, optional (0), recorded for the analysis maps
+//   buoyancy = true  yield_term = true  partial_submergence = true  surface_rise = true   # switches
+//
+// Checks: positive density and viscosities, non-negative yield stress, extents min < max, surface above the
+// bottom, a known curve with admissible coefficients (exactly one of curve / curve_from).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "base/params.h"
+#include "model/fluid/field.h"
+
+namespace pastemix::model::fluid {
+
+std::vector<FluidRegion> read_fluid_regions(const Params& root, const std::string& scene_path);
+
+// The drag curve chosen by `lab reduce` in a parameters.toml: [drag_curve.chosen] text = NAME and
+// [drag_curve.NAME.<coefficient>] value = ... (InputError naming the file on anything missing).
+// With `name` given, that curve's coefficients instead of the chosen one (a fixed curve needs none).
+drag::DragCurve read_chosen_curve(const std::string& parameters_toml, const std::string& name = "");
+
+}  // namespace pastemix::model::fluid
