@@ -2,6 +2,7 @@
 #include "model/fluid/field.h"
 
 #include <cmath>
+#include <limits>
 
 #include "model/fluid/buoyancy.h"
 
@@ -57,7 +58,16 @@ Vec3 FluidField::kick(long a, const Vec3& v, const Vec3& F, double mass, double 
   const double d = 2.0 * radius;
   // D(s) with or without the yield term (pi d / 2)^2 tau_y (the switch keeps tau_y inside Re').
   const double yield_off = reg.yield_term ? 0.0 : 0.25 * kPi * kPi * d * d * reg.fluid.yield_stress;
-  auto cd = [&](double re) { return reg.curve.cd(re); };
+  // Yield number Y = tau_y / (|g| d (rho_p - rho_f)) of this particle, for curves that depend on it (constant
+  // per particle, so each particle still sees one monotone Cd(Re') curve). A particle lighter than the fluid
+  // has no finite Y: +inf (only its limit matters to such curves).
+  const double rho_p = mass / volume, gmag = norm(g);
+  double y = 0.0;
+  if (reg.fluid.yield_stress > 0.0)
+    y = (rho_p > reg.fluid.density && gmag > 0.0)
+            ? reg.fluid.yield_stress / (gmag * d * (rho_p - reg.fluid.density))
+            : std::numeric_limits<double>::infinity();
+  auto cd = [&](double re) { return reg.curve.cd(re, y); };
   auto magnitude = [&](double s) { return drag_magnitude(reg.fluid, cd, s, d) - yield_off; };
   // m dv/dt = F - phi D  <=>  (m/phi) dv/dt = F/phi - D: the kernel's kick with scaled mass and force.
   const double m_eff = mass / phi;

@@ -59,7 +59,8 @@ ColumnSettling column_settling(SphereRun r, double column) {
 double suspension_threshold(const drag::DragCurve& curve) {
   // k = lim Cd Re' as Re' -> 0, taken at Re' = 1e-30: exact for the fixed curves; for a fitted a Re'^(1-b) the
   // leftover is a 1e-30^(1-b) (1e-6 a for the lab fit's b = 0.80; large only as b -> 1).
-  const double k = curve.cd(1e-30) * 1e-30;
+  // For a curve that depends on the yield number this is its Y = 0 limit (the validations use fixed curves).
+  const double k = curve.cd(1e-30, 0.0) * 1e-30;
   return (kPiV / 6.0) / (kPiV * kPiV / 4.0 + k * kPiV / 8.0);
 }
 
