@@ -12,5 +12,7 @@ void register_lab_commands(CLI::App& app);
 void register_lab_drag_commands(CLI::App& lab);
 // `pastemix run ...` and other engine commands (app/cmd_model.cpp).
 void register_model_commands(CLI::App& app);
+// `pastemix maps ...` and `pastemix score ...` (app/cmd_analysis.cpp).
+void register_analysis_commands(CLI::App& app);
 
 }  // namespace pastemix::app

@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   pastemix::app::register_lab_commands(app);
   pastemix::app::register_model_commands(app);
+  pastemix::app::register_analysis_commands(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,0 +1,57 @@
+// SPDX-License-Identifier: MIT
+// Mixing map: a model result on the lab's block grid, with C and S computed exactly as the lab layer does.
+//
+// Per block (layer 1 = top, depth measured down from the final free surface of the paste):
+//   rock mass    M_wr   exact sphere-block intersection volumes x rock density (rock_in_blocks)
+//   paste volume V_p  = block volume - rock volume in the block (the whole block lies below the surface)
+//   dried paste  M_p  = V_p x paste density x solids fraction    (what oven-drying a cut block leaves)
+//   C, S, S_raw, flag from lab::compute_block with the case's K, rho_s and e_f (eqs 3.1 and 3.8).
+// Rock above the final surface is UNMIXED: it is counted in `above_surface` and in no block, whatever its
+// x, y (a lab block cut from the hardened mixture holds no rock sticking out of the top). Rock below the
+// surface is MIXED (submerged): in a block, below the grid or beside it.
+//
+// Assumes the grid's blocks lie inside the container, full of paste below the surface (the default grid
+// covers the chapter-3 box exactly; a box corner at the origin).
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "analysis/maps/block_grid.h"
+
+namespace pastemix::analysis {
+
+struct MixingInputs {
+  static constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  BlockLayout layout;            // default: the chapter-3 grid (4 x 3 blocks of 5 x 5.5 cm, 3 layers of 3 cm)
+  double surface_z = 0.0;        // m, final free surface
+  double paste_density = 0.0;    // kg/m3, wet paste
+  double solids_fraction = 0.0;  // -, solids mass / paste mass
+  double K = nan;                // kg/m3, rho_wr / n_wr of eq. 3.8; NaN: S not computed (flag no_K)
+  double rho_s = 2710.0;         // kg/m3, tailings particle density (thesis ch. 3)
+  double e_f = 0.6;              // -, final void ratio of the dried paste (thesis ch. 3)
+};
+
+struct MixingMap {
+  BlockLayout layout;
+  // Per block, flat index layout.index(i, j, k) (row-major [i][j][k], as the lab's grids).
+  std::vector<double> rock_mass, rock_volume, block_volume, paste_volume, paste_dried_mass;  // kg, m3
+  std::vector<double> C, S, S_raw;     // fractions; S capped at 1, NaN where undefined
+  std::vector<std::int32_t> flag;      // lab::SFlag
+  // Accounting, kg: poured = in_blocks + below_grid + beside_grid + above_surface.
+  double poured = 0.0, in_blocks = 0.0, below_grid = 0.0, beside_grid = 0.0, above_surface = 0.0;
+  double mixed() const { return in_blocks + below_grid + beside_grid; }  // submerged rock
+  double unmixed() const { return above_surface; }
+  double outside_grid() const { return below_grid + beside_grid; }
+  double conservation_error() const;  // |poured - sum of the parts| / poured
+  int overfull_blocks = 0;            // blocks whose rock volume exceeded the block volume (DEM overlaps)
+};
+
+MixingMap mixing_map(const MixingInputs& in, const ParticleView& particles);
+
+// "M_ijk" for 1-based indices (several digits joined with '_' when a count exceeds 9).
+std::string block_name(int i, int j, int k);
+
+}  // namespace pastemix::analysis

@@ -1,0 +1,142 @@
+// SPDX-License-Identifier: MIT
+#include "analysis/maps/result_file.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "base/error.h"
+#include "base/h5.h"
+
+namespace pastemix::analysis {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// A snapshot group name is six digits ("000042").
+bool is_snapshot_name(const std::string& s) {
+  return s.size() == 6 && std::all_of(s.begin(), s.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+
+// The paste property `attr`: the override if given, else the file's root attribute, else an InputError.
+Sourced fluid_property(const H5Reader& h5, const std::string& file, const char* attr, std::optional<double> over,
+                       const char* option, const char* unit, std::vector<std::string>& notes) {
+  const bool in_file = h5.has_attribute("/", attr);
+  if (over) {
+    std::string note = fmt::format("{} = {:g} {} from the command line {}", attr, *over, unit, option);
+    if (in_file) note += fmt::format(" (overrides the file's {:g})", h5.attribute_double("/", attr));
+    else note += " (the file has no such attribute)";
+    notes.push_back(note);
+    return {*over, fmt::format("command line {}", option)};
+  }
+  if (!in_file)
+    throw InputError(file, 0, fmt::format("attribute '{}' of '/'", attr),
+                     fmt::format("missing from the file (a result without a fluid, or from an engine that does not "
+                                 "write it yet); give it with {} ({})",
+                                 option, unit));
+  return {h5.attribute_double("/", attr), fmt::format("file attribute '{}'", attr)};
+}
+
+}  // namespace
+
+ResultSnapshot read_result(const fs::path& path, const ResultOverrides& over) {
+  const std::string file = path.string();
+  if (!fs::exists(path)) throw InputError(file, 0, "", "no such file");
+  if (!fs::is_regular_file(path)) throw InputError(file, 0, "", "not a regular file");
+  H5Reader h5(path);
+  ResultSnapshot r;
+  r.path = file;
+  r.seed = h5.has_attribute("/", "seed") ? h5.attribute_int("/", "seed") : -1;
+  r.scene_hash = h5.has_attribute("/", "scene_hash") ? h5.attribute_string("/", "scene_hash") : "";
+
+  // Snapshot: the last group under /snapshots unless one is chosen.
+  if (!h5.exists("/snapshots")) throw InputError(file, 0, "group '/snapshots'", "missing from the file");
+  std::vector<int> snaps;
+  for (const auto& name : h5.children("/snapshots"))
+    if (is_snapshot_name(name)) snaps.push_back(std::stoi(name));
+  std::sort(snaps.begin(), snaps.end());
+  if (snaps.empty()) throw InputError(file, 0, "group '/snapshots'", "holds no snapshot (NNNNNN groups)");
+  if (over.snapshot) {
+    if (!std::binary_search(snaps.begin(), snaps.end(), *over.snapshot))
+      throw InputError(file, 0, "--snapshot",
+                       fmt::format("snapshot {} not in the file (it has {} to {})", *over.snapshot, snaps.front(),
+                                   snaps.back()));
+    r.snapshot = *over.snapshot;
+  } else {
+    r.snapshot = snaps.back();
+  }
+  const std::string g = fmt::format("/snapshots/{:06d}", r.snapshot);
+  r.time_s = h5.has_attribute(g, "time_s") ? h5.attribute_double(g, "time_s") : std::nan("");
+
+  const auto pos = h5.read_doubles(g + "/position");
+  const auto pdims = h5.dims(g + "/position");
+  r.radius = h5.read_doubles(g + "/radius");
+  const auto mat = h5.read_ints(g + "/material");
+  const std::size_t n = r.radius.size();
+  if (pdims.size() != 2 || pdims[1] != 3 || pdims[0] != n)
+    throw InputError(file, 0, fmt::format("dataset '{}/position'", g),
+                     fmt::format("expected N x 3 with N = {} (the radius count)", n));
+  if (mat.size() != n)
+    throw InputError(file, 0, fmt::format("dataset '{}/material'", g), fmt::format("expected {} values", n));
+  r.position.resize(n);
+  for (std::size_t p = 0; p < n; ++p) {
+    r.position[p] = {pos[3 * p], pos[3 * p + 1], pos[3 * p + 2]};
+    for (double c : r.position[p])
+      if (!std::isfinite(c))
+        throw InputError(file, 0, fmt::format("dataset '{}/position'", g), fmt::format("particle {} is not finite", p));
+    if (!(r.radius[p] > 0.0) || !std::isfinite(r.radius[p]))
+      throw InputError(file, 0, fmt::format("dataset '{}/radius'", g),
+                       fmt::format("particle {}: radius must be positive, got {}", p, r.radius[p]));
+  }
+
+  // Material densities.
+  const auto names = h5.exists("/materials") ? h5.read_strings("/materials") : std::vector<std::string>{};
+  std::vector<double> rho;
+  if (over.rock_density) {
+    r.density_source = fmt::format("command line --rock-density ({:g} kg/m3 for every particle)", *over.rock_density);
+    r.notes.push_back(r.density_source + (h5.exists("/material_density") ? ", overriding /material_density" : ""));
+  } else {
+    if (!h5.exists("/material_density"))
+      throw InputError(file, 0, "dataset '/material_density'",
+                       "missing from the file (an engine that does not write it yet); give --rock-density (kg/m3)");
+    rho = h5.read_doubles("/material_density");
+    if (!names.empty() && rho.size() != names.size())
+      throw InputError(file, 0, "dataset '/material_density'",
+                       fmt::format("has {} values for {} materials in /materials", rho.size(), names.size()));
+    for (std::size_t m = 0; m < rho.size(); ++m)
+      if (!(rho[m] > 0.0) || !std::isfinite(rho[m]))
+        throw InputError(file, 0, "dataset '/material_density'",
+                         fmt::format("material {}: density must be positive, got {}", m, rho[m]));
+    r.density_source = "file dataset '/material_density'";
+  }
+  r.density.resize(n);
+  for (std::size_t p = 0; p < n; ++p) {
+    if (over.rock_density) {
+      r.density[p] = *over.rock_density;
+      continue;
+    }
+    if (mat[p] < 0 || static_cast<std::size_t>(mat[p]) >= rho.size())
+      throw InputError(file, 0, fmt::format("dataset '{}/material'", g),
+                       fmt::format("particle {}: material {} is not in /material_density ({} entries)", p, mat[p],
+                                   rho.size()));
+    r.density[p] = rho[static_cast<std::size_t>(mat[p])];
+  }
+
+  r.surface_z = fluid_property(h5, file, "fluid_surface_z", over.surface_z, "--surface-z", "m", r.notes);
+  r.paste_density = fluid_property(h5, file, "fluid_density", over.paste_density, "--paste-density", "kg/m3", r.notes);
+  r.solids_fraction =
+      fluid_property(h5, file, "fluid_solids_fraction", over.solids_fraction, "--solids", "fraction", r.notes);
+  if (!std::isfinite(r.surface_z.value))
+    throw InputError(file, 0, r.surface_z.source, "fluid surface height is not finite");
+  if (!(r.paste_density.value > 0.0) || !std::isfinite(r.paste_density.value))
+    throw InputError(file, 0, r.paste_density.source,
+                     fmt::format("paste density must be positive (kg/m3), got {}", r.paste_density.value));
+  if (!(r.solids_fraction.value > 0.0 && r.solids_fraction.value <= 1.0))
+    throw InputError(file, 0, r.solids_fraction.source,
+                     fmt::format("solids fraction must be in (0, 1] (e.g. 0.75), got {}", r.solids_fraction.value));
+  return r;
+}
+
+}  // namespace pastemix::analysis

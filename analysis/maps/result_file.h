@@ -1,0 +1,54 @@
+// SPDX-License-Identifier: MIT
+// What the mixing maps need from a model result file (HDF5, schema in model/output.h), read through files only.
+//
+// Read from the file:
+//   /snapshots/NNNNNN/{position (N x 3, m), radius (N, m), material (N)}   the chosen (default: last) snapshot
+//   /materials (M names), /material_density (M, kg/m3)                      rock density per material
+//   root attributes seed, scene_hash; fluid_surface_z (m), fluid_density (kg/m3), fluid_solids_fraction (-)
+// The last three describe the paste at the end of the run (the surface has risen by the volume of rock that
+// entered it). A command-line override takes precedence over the file and is reported as the source; without
+// either, reading fails with an InputError that names the file and the missing attribute and the option.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace pastemix::analysis {
+
+struct ResultOverrides {
+  std::optional<double> surface_z;        // m
+  std::optional<double> paste_density;    // kg/m3 (wet paste)
+  std::optional<double> solids_fraction;  // - (mass of solids / mass of paste)
+  std::optional<double> rock_density;     // kg/m3, for every material when /material_density is absent
+  std::optional<int> snapshot;            // snapshot index; default the last one
+};
+
+// A value and where it came from ("file attribute 'fluid_surface_z'" or "command line --surface-z").
+struct Sourced {
+  double value = 0.0;
+  std::string source;
+};
+
+struct ResultSnapshot {
+  std::string path;                 // the result file
+  std::int64_t seed = 0;            // -1 if the file has none
+  std::string scene_hash;           // "" if the file has none
+  int snapshot = 0;                 // index of the snapshot read
+  double time_s = 0.0;              // its time
+  std::vector<std::array<double, 3>> position;  // m
+  std::vector<double> radius;                   // m
+  std::vector<double> density;                  // kg/m3 per particle (from its material)
+  Sourced surface_z, paste_density, solids_fraction;
+  std::string density_source;
+  std::vector<std::string> notes;  // what came from the command line instead of the file
+};
+
+// Reads and checks everything (finite positions, positive radii, densities and paste properties, solids in
+// (0, 1], material indices in range). Any defect -> InputError naming the file and the dataset or attribute.
+ResultSnapshot read_result(const std::filesystem::path& path, const ResultOverrides& overrides);
+
+}  // namespace pastemix::analysis

@@ -1,0 +1,104 @@
+// SPDX-License-Identifier: MIT
+#include "analysis/pile/repose_angle.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "base/error.h"
+#include "base/stats.h"
+
+namespace pastemix::analysis {
+
+ReposeAngle measure_repose_angle(std::span<const std::array<double, 3>> position, std::span<const double> radius,
+                                 const ReposeOptions& opt) {
+  constexpr double kPi = 3.14159265358979323846;
+  const std::size_t n = radius.size();
+  if (n < 10) throw RuntimeFailure(fmt::format("repose angle: only {} particles, no pile to measure", n));
+  // Axis.
+  std::array<double, 2> axis{0.0, 0.0};
+  double mean_d = 0.0;
+  if (opt.axis_xy) {
+    axis = *opt.axis_xy;
+  } else {
+    double mass = 0.0;
+    for (std::size_t p = 0; p < n; ++p) {
+      const double w = radius[p] * radius[p] * radius[p];
+      axis[0] += w * position[p][0];
+      axis[1] += w * position[p][1];
+      mass += w;
+    }
+    axis[0] /= mass;
+    axis[1] /= mass;
+  }
+  for (double r : radius) mean_d += 2.0 * r;
+  mean_d /= static_cast<double>(n);
+  const double bin = opt.bin > 0.0 ? opt.bin : 2.0 * mean_d;
+  const double toe = opt.toe_height > 0.0 ? opt.toe_height : mean_d;
+  // Surface heights per (sector, radial bin).
+  double rho_max = 0.0;
+  for (std::size_t p = 0; p < n; ++p)
+    rho_max = std::max(rho_max, std::hypot(position[p][0] - axis[0], position[p][1] - axis[1]));
+  const int bins = static_cast<int>(rho_max / bin) + 1;
+  const double none = -std::numeric_limits<double>::infinity();
+  std::vector<double> surface(static_cast<std::size_t>(opt.sectors * bins), none);
+  double height = 0.0;
+  for (std::size_t p = 0; p < n; ++p) {
+    const double dx = position[p][0] - axis[0], dy = position[p][1] - axis[1];
+    const double rho = std::hypot(dx, dy);
+    double phi = std::atan2(dy, dx) + kPi;  // [0, 2 pi]
+    int s = std::min(opt.sectors - 1, static_cast<int>(phi / (2.0 * kPi) * opt.sectors));
+    int b = static_cast<int>(rho / bin);
+    const double top = position[p][2] + radius[p] - opt.base_z;
+    auto& cell = surface[static_cast<std::size_t>(s * bins + b)];
+    cell = std::max(cell, top);
+    height = std::max(height, top);
+  }
+  std::vector<double> angles, radii;
+  for (int s = 0; s < opt.sectors; ++s) {
+    double sx = 0, sy = 0, sxx = 0, sxy = 0;
+    int count = 0;
+    double reach = 0.0;
+    for (int b = 0; b < bins; ++b) {
+      const double h = surface[static_cast<std::size_t>(s * bins + b)];
+      if (h == none) continue;
+      const double rho = (b + 0.5) * bin;
+      if (h > toe) reach = std::max(reach, (b + 1) * bin);
+      if (h < opt.flank_lo * height || h > opt.flank_hi * height) continue;
+      sx += rho;
+      sy += h;
+      sxx += rho * rho;
+      sxy += rho * h;
+      ++count;
+    }
+    radii.push_back(reach);
+    if (count < 3) continue;
+    const double denom = count * sxx - sx * sx;
+    if (denom <= 0.0) continue;
+    const double slope = (count * sxy - sx * sy) / denom;
+    if (slope >= 0.0) continue;  // not a flank: a sector with debris only
+    angles.push_back(std::atan(-slope) * 180.0 / kPi);
+  }
+  if (angles.size() < 3)
+    throw RuntimeFailure(fmt::format(
+        "repose angle: only {} of {} sectors have a measurable flank (pile height {:.4f} m); the particles do "
+        "not form a pile",
+        angles.size(), opt.sectors, height));
+  Summary a = summarize(angles), d = summarize(radii);
+  ReposeAngle out;
+  out.angle_deg = a.mean;
+  out.sd_deg = a.sd;
+  out.sectors_used = a.n;
+  out.height = height;
+  out.diameter = 2.0 * d.mean;
+  out.method = fmt::format(
+      "surface = highest sphere top per ({} sectors x {:.2f} mm radial bins); least-squares flank between {:.0f} "
+      "and {:.0f} % of the pile height per sector; mean over sectors",
+      opt.sectors, bin * 1e3, opt.flank_lo * 100, opt.flank_hi * 100);
+  return out;
+}
+
+}  // namespace pastemix::analysis

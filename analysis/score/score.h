@@ -1,0 +1,77 @@
+// SPDX-License-Identifier: MIT
+// Scoring a model ensemble against a lab case's measured block grid (thesis ch. 3, Table 3.2).
+//
+// The score uses the ensemble MEAN C per block and shows the spread (sd over realizations) beside it:
+//   mean absolute C error over the 36 blocks, in percentage points (pp);
+//   the centre-column profile: blocks M_22k and M_32k (the two centre columns under the funnel), per layer
+//     k = 1..3, model vs lab (the mean of the two blocks) and its error;
+//   S class agreement per block: no rock / S < 100 % / capped at 100 % (blocks where either class is unknown,
+//     e.g. case 1 without K, are not compared);
+//   the unmixed-cone check: C >= 90 % in M_221 and M_321 (the crater of unmixed rock under the funnel), for the
+//     model and for the lab (cases 2-3 have one, case 1 does not): reproduced when both have it;
+//   mixed (submerged) and unmixed (above the surface) rock masses, with the lab's recovered rock mass.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "analysis/score/ensemble.h"
+#include "analysis/score/lab_case.h"
+
+namespace pastemix::analysis {
+
+struct Realization {
+  std::string path;
+  std::int64_t seed = -1;
+  std::string scene_hash;
+  int snapshot = 0;
+  double time_s = 0.0;
+  double mae_pp = 0.0;  // this realization's own mean absolute C error
+};
+
+struct BlockScore {
+  int i = 0, j = 0, k = 0;  // 1-based
+  std::string id;           // M_ijk
+  double lab_C = 0.0;       // fraction
+  Summary model_C;          // fraction, over realizations
+  double error_pp = 0.0;    // 100 (model mean - lab)
+  SClass lab_class = SClass::unknown, model_class = SClass::unknown;
+  double model_class_share = 0.0;
+  bool class_compared = false, class_agrees = false;
+};
+
+struct CentreLayer {
+  int k = 0;
+  double lab_C = 0.0, model_C = 0.0, model_sd = 0.0;  // fractions, mean of M_22k and M_32k
+  double error_pp = 0.0;
+};
+
+struct Score {
+  int case_id = 0;
+  double K = 0.0;
+  std::string K_source;
+  std::vector<Realization> realizations;
+  std::vector<BlockScore> blocks;  // lab order (lab::block_index)
+  int blocks_compared = 0;
+  double mae_pp = 0.0, max_abs_error_pp = 0.0;
+  Summary realization_mae_pp;  // spread of the per-realization errors
+  std::vector<CentreLayer> centre;
+  double centre_mae_pp = 0.0;
+  int classes_compared = 0, classes_agree = 0;
+  double no_rock_below = 0.0;  // kg: model blocks with less rock count as 'no rock' in the S classes
+  double cone_221 = 0.0, cone_321 = 0.0, lab_cone_221 = 0.0, lab_cone_321 = 0.0;  // fractions
+  bool model_cone = false, lab_cone = false;  // C >= 90 % in both M_221 and M_321
+  Summary poured, mixed, unmixed, outside_grid;  // kg
+  double lab_recovered_rock = 0.0;               // kg, sum of the lab's M_wr over the 36 blocks
+};
+
+// `maps[r]` belongs to `realizations[r]`. The maps must be on a 4 x 3 x 3 layout (std::invalid_argument).
+Score score_against_lab(const LabCase& lab, const std::vector<MixingMap>& maps, std::vector<Realization> realizations,
+                        double no_rock_below = kLabMassResolution);
+
+std::string score_table(const Score& s);  // the printed table
+std::string score_csv(const Score& s);    // one row per block
+std::string score_toml(const Score& s, const std::string& software, const std::string& command,
+                       const std::string& created, const std::string& lab_h5);
+
+}  // namespace pastemix::analysis

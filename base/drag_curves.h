@@ -1,0 +1,159 @@
+// SPDX-License-Identifier: MIT
+// Drag-coefficient curves Cd(Re') for a sphere in a Bingham fluid, evaluated by name.
+//
+// The lab fits these curves to settling spheres (lab/drag/) and the engine's Bingham drag law evaluates the
+// same expressions by the same name, so this header is formulas only: no I/O, no Ceres. Every formula is a
+// template on the scalar so that ceres::Jet can flow through it (AutoDiff in the fit, implicit
+// differentiation in the velocity fit).
+//
+// Physics (Dedegil 1987, as used by Zhang 2024, ch. 4):
+//   Re' = rho_f v^2 / (tau_y + eta_B v / d)                                  (4.18)
+//   F_d = (pi d / 2)^2 tau_y + 1/2 Cd(Re') rho_f v^2 (pi d^2 / 4)             (4.9)
+// Writing rho_f v^2 = Re' (tau_y + eta_B v/d), the dynamic part is 1/2 h(Re') (tau_y + eta_B v/d) pi d^2/4
+// with h = Cd Re'. Re' increases strictly with v, so the drag increases with v (and a settling sphere has a
+// unique terminal velocity) whenever h(Re') is non-decreasing. A curve is therefore "well posed" here if
+//   (1) Cd is continuous, (2) Cd decreases with Re', and (3) Cd Re' does not decrease with Re'.
+// The published curve (4.19) violates (1): h jumps from 24 to 29.3 at Re' = 1 and from 58.4 to 60 at
+// Re' = 150, and a sphere whose net weight falls inside a jump has no terminal velocity at all.
+// The fitted families below satisfy (1)-(3) by construction for every admissible coefficient vector:
+//   power_sum:   Cd = k/Re' + a Re'^-b + c                  h = k + a Re'^(1-b) + c Re'
+//   power_blend: Cd = ((k/Re' + a Re'^-b)^n + c^n)^(1/n)     h = ((k + a Re'^(1-b))^n + (c Re')^n)^(1/n)
+// with k, a >= 0 (k + a > 0), 0 < b < 1, c >= 0 (> 0 for the blend), n > 0: sums and power means of
+// non-increasing positive terms are non-increasing, and of non-decreasing terms non-decreasing.
+// power_blend is a smooth maximum (Churchill-Usagi) of a viscous-yield branch and Newton's constant Cd = c;
+// n sets how sharply the two meet.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <optional>
+#include <string_view>
+#include <vector>
+
+namespace pastemix::drag {
+
+inline constexpr int kMaxCoefficients = 5;
+
+enum class CurveId { stokes, published_4_19, power_sum, power_blend };
+
+struct CurveInfo {
+  CurveId id;
+  std::string_view name;
+  std::string_view formula;
+  int n_coefficients;  // 0 for the fixed curves
+  std::array<std::string_view, kMaxCoefficients> coefficient_names;
+  // Admissible box (monotonicity holds inside it) and the fit's starting point.
+  std::array<double, kMaxCoefficients> lower, upper, start;
+  bool continuous;  // false only for the published piecewise curve
+};
+
+inline constexpr std::array<CurveInfo, 4> kCurves{{
+    {CurveId::stokes, "stokes", "Cd = 24/Re'", 0, {}, {}, {}, {}, true},
+    {CurveId::published_4_19, "published_4_19",
+     "Cd = 24/Re' (Re' < 1); 29.12/Re' + 0.195 (1 <= Re' <= 150); 0.4 (Re' > 150)", 0, {}, {}, {}, {},
+     false},
+    {CurveId::power_sum, "power_sum", "Cd = k/Re' + a Re'^-b + c", 4,
+     {"k", "a", "b", "c", ""},
+     {0.0, 0.0, 0.01, 0.0, 0.0},
+     {1000.0, 1000.0, 0.99, 10.0, 0.0},
+     {24.0, 3.0, 0.5, 0.3, 0.0},
+     true},
+    {CurveId::power_blend, "power_blend", "Cd = ((k/Re' + a Re'^-b)^n + c^n)^(1/n)", 5,
+     {"k", "a", "b", "c", "n"},
+     {0.0, 0.0, 0.01, 0.01, 0.3},
+     {1000.0, 1000.0, 0.99, 10.0, 10.0},
+     {24.0, 1.0, 0.5, 0.4, 1.5},
+     true},
+}};
+
+inline const CurveInfo& curve_info(CurveId id) { return kCurves[static_cast<std::size_t>(id)]; }
+
+inline std::optional<CurveId> find_curve(std::string_view name) {
+  for (const auto& c : kCurves)
+    if (c.name == name) return c.id;
+  return std::nullopt;
+}
+
+// Coefficients inside the admissible box (and k + a > 0, so Cd is strictly decreasing). Returns an empty
+// view on success, else a static description of what is wrong.
+inline std::string_view check_coefficients(CurveId id, const std::vector<double>& c) {
+  const auto& info = curve_info(id);
+  if (static_cast<int>(c.size()) != info.n_coefficients) return "wrong number of coefficients";
+  for (int i = 0; i < info.n_coefficients; ++i)
+    if (!(c[i] >= info.lower[i] && c[i] <= info.upper[i])) return "coefficient outside its admissible range";
+  if (info.n_coefficients > 0 && !(c[0] + c[1] > 0.0)) return "k + a must be positive";
+  return {};
+}
+
+// Cd(Re') for curve `id` with coefficients `c` (ignored by the fixed curves). Re' > 0.
+template <typename T>
+T drag_coefficient(CurveId id, const T* c, const T& re) {
+  using std::pow;  // ceres::pow for Jets is found by argument-dependent lookup
+  switch (id) {
+    case CurveId::stokes:
+      return T(24.0) / re;
+    case CurveId::published_4_19:
+      if (re < T(1.0)) return T(24.0) / re;
+      if (re <= T(150.0)) return T(29.12) / re + T(0.195);
+      return T(0.4) + T(0.0) * re;  // keep the derivative slot of a Jet defined
+    case CurveId::power_sum:
+      return c[0] / re + c[1] * pow(re, -c[2]) + c[3];
+    case CurveId::power_blend: {
+      const T x = c[0] / re + c[1] * pow(re, -c[2]);
+      // Power mean written around the larger term so (k/Re')^n cannot overflow at tiny Re'.
+      const T m = x > c[3] ? x : c[3];
+      return m * pow(pow(x / m, c[4]) + pow(c[3] / m, c[4]), T(1.0) / c[4]);
+    }
+  }
+  return T(0.0);
+}
+
+// Modified particle Reynolds number (4.18); SI units, eta_B > 0.
+template <typename T>
+T bingham_reynolds(double rho_f, const T& v, double tau_y, double eta_B, double d) {
+  return rho_f * v * v / (tau_y + eta_B * v / d);
+}
+
+// A sphere settling in a Bingham fluid at rest (SI units).
+struct BinghamSphere {
+  double d = 0.0;      // m
+  double rho_p = 0.0;  // kg/m3
+  double rho_f = 0.0;  // kg/m3
+  double tau_y = 0.0;  // Pa
+  double eta_B = 0.0;  // Pa.s
+};
+
+inline constexpr double kPi = 3.14159265358979323846;
+
+// Net weight (weight minus buoyancy), N.
+inline double net_weight(const BinghamSphere& s, double g) {
+  return (s.rho_p - s.rho_f) * g * kPi * s.d * s.d * s.d / 6.0;
+}
+
+// Dedegil's drag (4.9) at speed v > 0, N.
+template <typename T>
+T dedegil_drag(CurveId id, const T* c, const BinghamSphere& s, const T& v) {
+  const T re = bingham_reynolds(s.rho_f, v, s.tau_y, s.eta_B, s.d);
+  const double area = kPi * s.d * s.d / 4.0;
+  const double yield = (kPi * s.d / 2.0) * (kPi * s.d / 2.0) * s.tau_y;
+  return yield + 0.5 * drag_coefficient(id, c, re) * s.rho_f * v * v * area;
+}
+
+// Settling drag coefficient (4.17) from a measured terminal velocity: the Cd that balances net weight.
+inline double settling_drag_coefficient(const BinghamSphere& s, double v, double g) {
+  return 2.0 / (v * v * s.rho_f) * (2.0 / 3.0 * (s.rho_p - s.rho_f) * s.d * g - kPi * s.tau_y);
+}
+
+// A curve with its coefficients, for callers that work in doubles.
+struct DragCurve {
+  CurveId id = CurveId::stokes;
+  std::vector<double> coefficients;
+
+  const CurveInfo& info() const { return curve_info(id); }
+  double cd(double re) const { return drag_coefficient<double>(id, coefficients.data(), re); }
+  double drag(const BinghamSphere& s, double v) const {
+    return dedegil_drag<double>(id, coefficients.data(), s, v);
+  }
+};
+
+}  // namespace pastemix::drag

@@ -1,0 +1,132 @@
+// SPDX-License-Identifier: MIT
+// `pastemix maps` and `pastemix score` through the built command (app/cmd_analysis.cpp): good runs write
+// their outputs; bad inputs exit 2, name the file and the field, and write nothing.
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <doctest/doctest.h>
+#include <fmt/format.h>
+
+#include "analysis/maps/mixing_map.h"
+#include "analysis/maps/result_file.h"
+#include "tests/analysis/result_fixture.h"
+#include "tests/run_command.h"
+
+namespace fs = std::filesystem;
+using namespace pastemix::test;
+using namespace pastemix::analysis;
+
+namespace {
+
+ResultSpec rock_result(double r1) {
+  ResultSpec s;
+  s.final = {{{0.075, 0.0825, 0.085}, r1}, {{0.125, 0.0825, 0.085}, 0.011}, {{0.02, 0.02, 0.04}, 0.008},
+             {{0.10, 0.0825, 0.115}, 0.008}};
+  return s;
+}
+
+// A scratch folder with two result files and a lab.h5 whose case 3 equals the first result's map.
+struct Fixture : ScratchDir {
+  Fixture(const std::string& name) : ScratchDir(name) {
+    write_result(dir / "r1.h5", rock_result(0.010));
+    auto s2 = rock_result(0.0105);
+    s2.seed = 8;
+    write_result(dir / "r2.h5", s2);
+    const auto r = read_result(dir / "r1.h5", {});
+    MixingInputs in;
+    in.surface_z = 0.10;
+    in.paste_density = 1843;
+    in.solids_fraction = 0.75;
+    in.K = 3570;
+    const MixingMap m = mixing_map(in, ParticleView{r.position, r.radius, r.density});
+    LabSpec lab;
+    lab.C = m.C;
+    lab.S = m.S;
+    lab.flag = m.flag;
+    lab.M_wr = m.rock_mass;
+    lab.M_paste = m.paste_dried_mass;
+    write_lab(dir / "lab.h5", lab);
+  }
+  std::string p(const std::string& n) const { return fmt::format("'{}'", (dir / n).string()); }
+  // Runs a command that must fail with exit 2, mention every `needles`, and write nothing under out/.
+  void expect_bad(const std::string& args, const std::vector<std::string>& needles) const {
+    const auto r = run_pastemix(fmt::format("{} --out {}", args, p("out")));
+    INFO(args);
+    INFO(r.output);
+    CHECK(r.exit_code == 2);
+    for (const auto& n : needles) CHECK(r.output.find(n) != std::string::npos);
+    CHECK(!fs::exists(dir / "out"));
+  }
+};
+
+std::string read_text(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+}  // namespace
+
+TEST_CASE("cli: maps writes maps.h5 and a PNG, with the accounting and the seed copied") {
+  Fixture f("cli_maps");
+  const auto r = run_pastemix(fmt::format("maps {} --lab 3 --lab-h5 {} --out {}", f.p("r1.h5"), f.p("lab.h5"),
+                                          f.p("out")));
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.output.find("relative error") != std::string::npos);
+  CHECK(r.output.find("K = 3570 kg/m3") != std::string::npos);
+  pastemix::H5Reader h5(f.dir / "out" / "maps.h5");
+  CHECK(h5.attribute_int("/", "seed") == 7);
+  CHECK(h5.attribute_string("/", "scene_hash") == "00000000deadbeef");
+  CHECK(h5.attribute_double("/accounting", "conservation_relative_error") < 1e-9);
+  CHECK(h5.dims("/blocks/C") == std::vector<std::uint64_t>{4, 3, 3});
+  CHECK(fs::exists(f.dir / "out" / "maps.png"));
+}
+
+TEST_CASE("cli: score of a result equal to the lab grid is 0 pp and two realizations show the spread") {
+  Fixture f("cli_score");
+  auto r = run_pastemix(fmt::format("score {} --lab 3 --lab-h5 {} --out {}", f.p("r1.h5"), f.p("lab.h5"), f.p("one")));
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.output.find("mean absolute C error: 0.00 pp over 36 blocks") != std::string::npos);
+  CHECK(r.output.find("36 of 36 compared blocks agree") != std::string::npos);
+  r = run_pastemix(fmt::format("score {} {} --lab 3 --lab-h5 {} --out {}", f.p("r1.h5"), f.p("r2.h5"),
+                               f.p("lab.h5"), f.p("two")));
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.output.find("2 realizations (seeds 7, 8)") != std::string::npos);
+  const std::string toml = read_text(f.dir / "two" / "score.toml");
+  CHECK(toml.find("realizations = 2") != std::string::npos);
+  CHECK(read_text(f.dir / "two" / "score.csv").find("M_221,2,2,1,") != std::string::npos);
+  for (int k = 1; k <= 3; ++k) CHECK(fs::exists(f.dir / "two" / fmt::format("score_layer_{}.png", k)));
+}
+
+TEST_CASE("cli: bad inputs exit 2, name the file and field, and write nothing") {
+  Fixture f("cli_bad");
+  const std::string lab = fmt::format(" --lab-h5 {}", f.p("lab.h5"));
+  f.expect_bad("maps " + f.p("missing.h5"), {"missing.h5", "no such file"});
+  std::ofstream(f.dir / "text.h5") << "not an HDF5 file\n";
+  f.expect_bad("score " + f.p("text.h5") + " --lab 3" + lab, {"text.h5", "HDF5"});
+  auto s = rock_result(0.01);
+  s.material_density = false;
+  write_result(f.dir / "nodens.h5", s);
+  f.expect_bad("maps " + f.p("nodens.h5"), {"nodens.h5", "/material_density"});
+  s = rock_result(0.01);
+  s.surface = false;
+  write_result(f.dir / "nosurf.h5", s);
+  f.expect_bad("score " + f.p("r1.h5") + " " + f.p("nosurf.h5") + " --lab 3" + lab,
+               {"nosurf.h5", "fluid_surface_z", "--surface-z"});
+  f.expect_bad("score " + f.p("r1.h5") + " --lab 9" + lab, {"lab.h5", "case 9 is not a mixing case"});
+  f.expect_bad("score " + f.p("r1.h5") + " --lab 6" + lab, {"lab.h5", "case 6 has no lab block grid", "maps"});
+  f.expect_bad("score " + f.p("r1.h5") + " --lab 3 --lab-h5 " + f.p("nolab.h5"), {"nolab.h5", "lab reduce"});
+  f.expect_bad("maps " + f.p("r1.h5") + " --solids 75", {"--solids", "(0, 1]"});
+  f.expect_bad("score " + f.p("r1.h5") + " --lab 3 --blocks 3,3" + lab, {"--blocks", "4 x 3"});
+  // With the override the missing surface is fine, and the output says where it came from.
+  const auto r = run_pastemix("maps " + f.p("nosurf.h5") + " --surface-z 0.1 --out " + f.p("ok"));
+  INFO(r.output);
+  CHECK(r.exit_code == 0);
+  CHECK(r.output.find("command line --surface-z") != std::string::npos);
+  CHECK(r.output.find("K = unknown") != std::string::npos);
+}

@@ -1,0 +1,122 @@
+// SPDX-License-Identifier: MIT
+// Synthetic model result files (the schema of model/output.h plus the maps' /material_density and fluid
+// attributes), and a synthetic lab.h5 case, written by the tests themselves.
+#pragma once
+
+#include <unistd.h>
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "base/h5.h"
+
+namespace pastemix::test {
+
+struct Sphere {
+  std::array<double, 3> c;  // m
+  double r;                 // m
+  int material = 0;
+};
+
+struct ResultSpec {
+  std::vector<Sphere> final;           // last snapshot
+  std::vector<double> densities{2760};  // kg/m3 per material
+  std::int64_t seed = 7;
+  bool material_density = true, surface = true, paste = true;
+  double surface_z = 0.10, paste_density = 1843.0, solids = 0.75;
+};
+
+inline void write_result(const std::filesystem::path& path, const ResultSpec& s) {
+  H5Writer h5(path);
+  const std::string scene = "# synthetic scene for the analysis tests\n";
+  h5.attribute("/", "scene_path", "synthetic.toml");
+  h5.attribute("/", "scene_text", scene);
+  h5.attribute("/", "scene_hash", "00000000deadbeef");
+  h5.attribute("/", "seed", s.seed);
+  std::vector<std::string> names;
+  for (std::size_t m = 0; m < s.densities.size(); ++m) names.push_back(fmt::format("rock{}", m));
+  h5.write_strings("/materials", names);
+  if (s.material_density) h5.write("/material_density", s.densities);
+  if (s.surface) h5.attribute("/", "fluid_surface_z", s.surface_z);
+  if (s.paste) {
+    h5.attribute("/", "fluid_density", s.paste_density);
+    h5.attribute("/", "fluid_solids_fraction", s.solids);
+  }
+  // Snapshot 0: the same spheres lifted 1 m (still falling); snapshot 1: the final state.
+  for (int snap = 0; snap < 2; ++snap) {
+    std::vector<double> pos, r;
+    std::vector<std::int64_t> id;
+    std::vector<std::int32_t> mat;
+    for (std::size_t p = 0; p < s.final.size(); ++p) {
+      const auto& q = s.final[p];
+      pos.insert(pos.end(), {q.c[0], q.c[1], q.c[2] + (snap == 0 ? 1.0 : 0.0)});
+      r.push_back(q.r);
+      id.push_back(static_cast<std::int64_t>(p));
+      mat.push_back(q.material);
+    }
+    const std::string g = fmt::format("/snapshots/{:06d}", snap);
+    const std::uint64_t n = s.final.size();
+    h5.write(g + "/position", pos, {n, 3});
+    h5.write(g + "/radius", r, {n});
+    h5.write(g + "/id", id, {n});
+    h5.write(g + "/material", mat, {n});
+    h5.attribute(g, "time_s", 0.5 * snap);
+  }
+  h5.write("/snapshots/time", std::vector<double>{0.0, 0.5});
+  h5.flush();
+}
+
+// A scratch folder removed when the test ends.
+struct ScratchDir {
+  std::filesystem::path dir;
+  explicit ScratchDir(const std::string& name) {
+    dir = std::filesystem::temp_directory_path() / fmt::format("pastemix_an_{}_{}", name, static_cast<long>(::getpid()));
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+  }
+  ~ScratchDir() { std::filesystem::remove_all(dir); }
+  std::filesystem::path operator/(const std::string& n) const { return dir / n; }
+};
+
+}  // namespace pastemix::test
+
+namespace pastemix::test {
+
+// A lab.h5 with the layout of lab/lab_h5.h for one case with a grid (C, flag, masses given per block in
+// lab order) and, optionally, one case known from the mixing programme but without a grid (as cases 6, 7).
+struct LabSpec {
+  int case_id = 3;
+  double K = 3570;
+  std::vector<double> C, S, M_wr, M_paste;  // 36 each
+  std::vector<std::int32_t> flag;           // 36
+  int case_without_grid = 6;                // 0: none
+};
+
+inline void write_lab(const std::filesystem::path& path, const LabSpec& s) {
+  H5Writer h5(path);
+  const std::vector<std::uint64_t> dims{4, 3, 3};
+  for (int c : {s.case_id, s.case_without_grid}) {
+    if (c == 0) continue;
+    const std::string p = fmt::format("/parameters/mixing.case_{}.paste_solids_fraction", c);
+    h5.create_group(p);
+    h5.attribute(p, "value", 0.75);
+    h5.write(fmt::format("/psd/mixing_case_{}/d_min", c), std::vector<double>{0.0025});
+  }
+  const std::string g = fmt::format("/block_cut/case_{}", s.case_id);
+  h5.write(g + "/C", s.C, dims);
+  h5.write(g + "/S", s.S, dims);
+  h5.write(g + "/S_raw", s.S, dims);
+  h5.write(g + "/flag", s.flag, dims);
+  h5.write(g + "/M_wr", s.M_wr, dims);
+  h5.write(g + "/M_paste_dried", s.M_paste, dims);
+  h5.attribute(g, "K", s.K);
+  h5.attribute(g, "K_source", "synthetic");
+  h5.flush();
+}
+
+}  // namespace pastemix::test

@@ -1,0 +1,102 @@
+// SPDX-License-Identifier: MIT
+#include "model/fluid/bingham_drag.h"
+
+#include <cmath>
+#include <cstdio>
+
+#include <doctest/doctest.h>
+
+#include "model/fluid/buoyancy.h"
+
+using namespace pastemix::model::fluid;
+
+namespace {
+constexpr double g = 9.81;
+auto stokes = [](double re) { return 24.0 / re; };
+// The published curve (thesis eq. 4.19), with its jump at Re' = 1.
+auto published = [](double re) { return re < 1.0 ? 24.0 / re : (re <= 150.0 ? 29.12 / re + 0.195 : 0.4); };
+}  // namespace
+
+TEST_CASE("fluid: 0.1 mm grain settling in water matches v_t (1 - exp(-t / tau)) within 0.5 % at any dt") {
+  // Thesis Table 4.1: d = 0.1 mm, 2700 kg/m3, water 1000 kg/m3, 1 mPa.s.
+  const double d = 1e-4, rho_p = 2700, r = d / 2;
+  const BinghamFluid water{1000.0, 0.0, 1e-3};
+  const double m = rho_p * kPi * d * d * d / 6.0;
+  const double weight = (rho_p - water.density) * g * kPi * d * d * d / 6.0;  // N, gravity minus buoyancy
+  const double v_t = (rho_p - water.density) * g * d * d / (18.0 * water.plastic_viscosity);
+  const double tau = rho_p * d * d / (18.0 * water.plastic_viscosity);
+  CHECK(v_t == doctest::Approx(0.009265).epsilon(1e-3));  // thesis eq. 4.21
+  CHECK(tau == doctest::Approx(1.5e-3).epsilon(1e-3));
+  (void)r;
+  for (double dt : {1e-7, 1e-6, 1e-5, 2.5e-5, 1e-4, 5e-4, 1e-3}) {
+    Vec v{0, 0, 0};
+    double worst = 0.0;
+    const int steps = static_cast<int>(std::lround(0.01 / dt));  // 10 ms = 6.7 tau
+    for (int n = 1; n <= steps; ++n) {
+      // Velocity Verlet's two half kicks with constant force.
+      v = drag_kick_implicit(water, stokes, d, v, Vec{0, 0, -weight}, m, 0.5 * dt);
+      v = drag_kick_implicit(water, stokes, d, v, Vec{0, 0, -weight}, m, 0.5 * dt);
+      const double t = n * dt;
+      worst = std::max(worst, std::abs(-v[2] - v_t * (1 - std::exp(-t / tau))) / v_t);
+    }
+    CAPTURE(dt);
+    CHECK(worst < 0.005);
+    MESSAGE("dt = " << dt << " s: max |v - v_analytic| / v_t = " << worst);
+  }
+}
+
+TEST_CASE("fluid: a sphere at rest below the yield threshold stays exactly at rest; just above, it sinks") {
+  // Paste of the thesis (75 % solids): 1843 kg/m3, tau_y 136 Pa, eta_B 0.7 Pa.s; a steel ball 8135 kg/m3.
+  const BinghamFluid paste{1843.0, 136.0, 0.7};
+  for (auto curve : {0, 1}) {
+    auto cd = [curve](double re) { return curve == 0 ? stokes(re) : published(re); };
+    // The threshold of this drag model: D(0+) = weight, D(0+) = tau_y d^2 (pi^2/4 + 12 pi/4) with the
+    // 24/Re' branch, so tau_y / (g d drho) = (pi/6) / (pi^2/4 + 3 pi) = 0.0440 (Beris et al.: 0.048).
+    const double drho = 8135.0 - paste.density;
+    const double d_crit = paste.yield_stress / (g * drho * (kPi / 6.0) / (kPi * kPi / 4.0 + 3.0 * kPi));
+    for (double factor : {0.99, 1.01}) {
+      const double d = d_crit * factor;  // smaller ball: yield wins; larger: gravity wins
+      const double m = 8135.0 * kPi * d * d * d / 6.0;
+      const double w = drho * g * kPi * d * d * d / 6.0;
+      Vec v{0, 0, 0};
+      for (int n = 0; n < 20000; ++n) v = drag_kick_implicit(paste, cd, d, v, Vec{0, 0, -w}, m, 1e-4);
+      if (factor < 1.0) CHECK(v[2] == 0.0);
+      else CHECK(v[2] < 0.0);
+    }
+    CHECK(paste.yield_stress / (g * d_crit * drho) == doctest::Approx(0.0440).epsilon(2e-3));
+  }
+}
+
+TEST_CASE("fluid: a moving sphere under a sub-threshold force stops and never reverses") {
+  const BinghamFluid paste{1843.0, 136.0, 0.7};
+  const double d = 0.0126, m = 8135.0 * kPi * d * d * d / 6.0;
+  const double w = (8135.0 - 1843.0) * g * kPi * d * d * d / 6.0;  // below D(0+) for 12.6 mm (see above)
+  Vec v{0, 0, -1.5};  // impact speed of a 15 cm fall
+  bool stopped = false;
+  for (int n = 0; n < 100000; ++n) {
+    v = drag_kick_implicit(paste, published, d, v, Vec{0, 0, -w}, m, 5e-6);
+    CHECK(v[2] <= 0.0);  // never upward
+    if (v[2] == 0.0) stopped = true;
+    if (stopped) CHECK(v[2] == 0.0);  // and, once stopped, stays
+  }
+  CHECK(stopped);
+}
+
+TEST_CASE("fluid: the terminal state satisfies D(v) = net weight") {
+  const BinghamFluid clay{1280.0, 30.5, 0.0131};  // Valentik & Whitmore suspension 1
+  auto cd = [](double re) { return 24.0 / re + 0.4 + 3.0 / std::sqrt(re); };  // a smooth monotone test curve
+  const double d = 0.0254, rho_p = 7800.0, m = rho_p * kPi * d * d * d / 6.0;
+  const double w = (rho_p - clay.density) * g * kPi * d * d * d / 6.0;
+  Vec v{0, 0, 0};
+  for (int n = 0; n < 4000; ++n) v = drag_kick_implicit(clay, cd, d, v, Vec{0, 0, -w}, m, 1e-3);
+  CHECK(drag_magnitude(clay, cd, -v[2], d) == doctest::Approx(w).epsilon(1e-9));
+}
+
+TEST_CASE("fluid: submerged volume of a sphere below a free surface") {
+  const double r = 0.01, full = 4.0 / 3.0 * kPi * r * r * r;
+  CHECK(submerged_volume(0.5, r, 0.0) == 0.0);
+  CHECK(submerged_volume(-0.5, r, 0.0) == doctest::Approx(full).epsilon(1e-14));
+  CHECK(submerged_volume(0.0, r, 0.0) == doctest::Approx(0.5 * full).epsilon(1e-14));
+  const double h = 0.3 * r;  // a cap of depth h
+  CHECK(submerged_volume(r - h, r, 0.0) == doctest::Approx(kPi * h * h * (3 * r - h) / 3).epsilon(1e-14));
+}
