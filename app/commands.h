@@ -14,5 +14,7 @@ void register_lab_drag_commands(CLI::App& lab);
 void register_model_commands(CLI::App& app);
 // `pastemix maps ...` and `pastemix score ...` (app/cmd_analysis.cpp).
 void register_analysis_commands(CLI::App& app);
+// `pastemix sweep` (app/cmd_study.cpp).
+void register_study_commands(CLI::App& app);
 
 }  // namespace pastemix::app
