@@ -105,7 +105,8 @@ RunCost run_once(const model::SceneDoc& doc, const std::string& qoi_name) {
     if (q.max_over_steps) best = std::max(best, q.eval(w));
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  return {q.max_over_steps ? best : q.eval(w), wall, static_cast<double>(n) * static_cast<double>(s.particles.size())};
+  return {q.max_over_steps ? best : q.eval(w), wall, static_cast<double>(n) * static_cast<double>(s.particles.size()),
+          s.particles.size()};
 }
 
 SweepResult sweep(const model::SceneDoc& base, const SweepOptions& o) {
@@ -131,7 +132,9 @@ SweepResult sweep(const model::SceneDoc& base, const SweepOptions& o) {
       q.push_back(qv);
       wall.push_back(w);
       work += rc.work / o.seeds;
-      if (!o.quiet) fmt::print(stderr, "  {} = {:.4g} seed {}: {} = {:.6g} ({:.2f} s)\n", o.vary, v, seed0 + s, o.qoi, qv, w);
+      if (!o.quiet)
+        fmt::print(stderr, "  {} = {:.4g} seed {}: {} = {:.6g} ({} particles, {:.0f} steps, {:.2f} s)\n", o.vary, v,
+                   seed0 + s, o.qoi, qv, rc.particles, rc.work / static_cast<double>(rc.particles), w);
     }
     const auto sq = summarize(q), sw = summarize(wall);
     r.points.push_back({v, sq.mean, o.seeds > 1 ? sq.sd : 0.0, o.seeds, sw.mean, work});

@@ -51,6 +51,7 @@ struct RunCost {
   double qoi = 0.0;
   double wall_s = 0.0;   // wall-clock seconds of the step loop (scene set-up and insertion excluded)
   double work = 0.0;     // particles x steps
+  std::size_t particles = 0;
 };
 // One run in-process (no HDF5).
 RunCost run_once(const model::SceneDoc& doc, const std::string& qoi);
