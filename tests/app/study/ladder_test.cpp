@@ -49,7 +49,7 @@ TEST_CASE("no extrapolation without a geometric ladder, with divergence, or insi
   CHECK(noisy.qoi == pts.back().qoi);
 }
 
-TEST_CASE("choice: the cheapest point within tolerance; none when nothing is") {
+TEST_CASE("choice: the cheapest point within tolerance - none when nothing is") {
   const auto pts = ladder(3.0, 0.3, 2.0, 5);  // errors 0.1, 0.025, 0.00625, ... (relative to 3)
   const Reference r = reference_of(pts, 2.0);
   const Choice c = choose(pts, r, 0.01);

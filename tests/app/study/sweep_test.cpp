@@ -49,7 +49,7 @@ TEST_CASE("Hertz impact, material 1: the chosen dt's peak force is within 1 % of
   CHECK(r.choice.rel_error[0] > o.tol);
 }
 
-TEST_CASE("psd_cut drops the intervals below the cut and renormalises; a cut above all is an error") {
+TEST_CASE("psd_cut drops the intervals below the cut and renormalises - a cut above all is an error") {
   const auto base = model::SceneDoc::parse_file(test::source_path("datasets/scenes/funnel_lift.toml"));
   SweepOptions o;
   o.vary = "psd_cut";
@@ -63,7 +63,7 @@ TEST_CASE("psd_cut drops the intervals below the cut and renormalises; a cut abo
   CHECK_THROWS_AS(at_value(d, o, 4e-3), InputError);
 }
 
-TEST_CASE("pastemix sweep writes the table, CSV, override file; a bad --qoi is exit 2") {
+TEST_CASE("pastemix sweep writes the table, CSV, override file - a bad --qoi is exit 2") {
   const auto dir = std::filesystem::temp_directory_path() / "pastemix_sweep_test";
   std::filesystem::remove_all(dir);
   const std::string scene = test::source_path("datasets/scenes/hertz_impact_m3.toml");
