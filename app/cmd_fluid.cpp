@@ -191,8 +191,7 @@ void register_pour(CLI::App* val) {
 }
 
 void register_calibrate(CLI::App& app) {
-  CLI::App* cal = app.add_subcommand("calibrate", "calibrations through the engine");
-  cal->require_subcommand(1);
+  CLI::App* cal = group_subcommand(app, "calibrate", "calibrate an unmeasurable parameter against lab tests");
   struct Opts {
     double ball = 12.6, height = 255.0, distance = 0.0, tau = 138.0, dt = 2e-5;
   };

@@ -13,6 +13,7 @@
 #include "app/commands.h"
 #include "model/run.h"
 #include "model/scene.h"
+#include "model/scene_override.h"
 
 namespace pastemix::app {
 
@@ -22,6 +23,8 @@ void register_model_commands(CLI::App& app) {
     std::string out = ".";
     int threads = 0;
     bool quiet = false;
+    std::vector<std::string> sets;
+    std::string overrides;
   };
   auto opts = std::make_shared<Opts>();
   CLI::App* run = app.add_subcommand("run", "run an f-DEM scene (TOML) and write <stem>.h5 + <stem>.xmf");
@@ -29,9 +32,14 @@ void register_model_commands(CLI::App& app) {
   run->add_option("--out", opts->out, "output folder (default: current)");
   run->add_option("--threads", opts->threads, "OpenMP threads (default: OMP_NUM_THREADS or all cores)");
   run->add_flag("--quiet", opts->quiet, "no progress line");
+  run->add_option("--set", opts->sets, "override a scene value: key.path=value (model/scene_override.h)");
+  run->add_option("--overrides", opts->overrides, "file of key.path = value lines (as pastemix sweep writes), applied before --set");
   run->callback([opts] {
     if (opts->threads > 0) omp_set_num_threads(opts->threads);
-    const model::Scene scene = model::load_scene(opts->scene);
+    std::vector<std::string> sets;
+    if (!opts->overrides.empty()) sets = model::read_override_file(opts->overrides);
+    sets.insert(sets.end(), opts->sets.begin(), opts->sets.end());
+    const model::Scene scene = model::load_scene(opts->scene, sets);
     // The time step against the Rayleigh time of the smallest sphere (DESIGN.md section 3): informative,
     // the right step is found by a convergence study, not by habit.
     {

@@ -6,6 +6,16 @@
 
 namespace pastemix::app {
 
+// A subcommand that groups others and that several layers add to (`calibrate`): created by the first caller,
+// found by the next.
+inline CLI::App* group_subcommand(CLI::App& app, const std::string& name, const std::string& description) {
+  for (CLI::App* sub : app.get_subcommands({}))
+    if (sub->get_name() == name) return sub;
+  CLI::App* sub = app.add_subcommand(name, description);
+  sub->require_subcommand(1);
+  return sub;
+}
+
 // `pastemix lab ...` (app/cmd_lab.cpp); it calls the drag registration below for its own subcommand.
 void register_lab_commands(CLI::App& app);
 // `pastemix lab drag-fit ...` (app/cmd_lab_drag.cpp), registered on the `lab` subcommand.
@@ -16,5 +26,7 @@ void register_model_commands(CLI::App& app);
 void register_analysis_commands(CLI::App& app);
 // `pastemix validate ...`, `pastemix calibrate viscosity` (fluid, app/cmd_fluid.cpp).
 void register_fluid_commands(CLI::App& app);
+// `pastemix sweep` (app/cmd_study.cpp).
+void register_study_commands(CLI::App& app);
 
 }  // namespace pastemix::app

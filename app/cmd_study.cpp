@@ -1,0 +1,96 @@
+// SPDX-License-Identifier: MIT
+// `pastemix sweep SCENE.toml --vary dt|psd_cut|youngs_modulus --qoi NAME [--values ...] [--levels N]
+//  [--tol REL] [--seeds N] [--material NAME] [--set key=value ...] [--out DIR]`: speed against error
+// (app/study/sweep.h); `pastemix calibrate rolling-resistance SCENE.toml --target DEG --bracket LO HI ...`
+// (app/study/calibrate.h).
+#include <memory>
+
+#include <fmt/format.h>
+
+#include "app/commands.h"
+#include "base/stats.h"
+#include "app/study/calibrate.h"
+#include "app/study/qoi.h"
+#include "app/study/sweep.h"
+
+namespace pastemix::app {
+
+void register_study_commands(CLI::App& app) {
+  struct Opts {
+    std::string scene;
+    study::SweepOptions o;
+    std::vector<std::string> sets;
+  };
+  auto opts = std::make_shared<Opts>();
+  std::string qoi_help = "quantity of interest:";
+  for (const auto& q : study::qoi_registry()) qoi_help += " " + q.name + " (" + q.unit + ")";
+  CLI::App* s = app.add_subcommand("sweep", "speed against error: run a scene over a ladder of one setting");
+  s->add_option("scene", opts->scene, "scene file (TOML)")->required();
+  s->add_option("--vary", opts->o.vary, "dt | youngs_modulus | psd_cut")->required()->check(
+      CLI::IsMember({"dt", "youngs_modulus", "psd_cut"}));
+  s->add_option("--qoi", opts->o.qoi, qoi_help)->required();
+  s->add_option("--values", opts->o.values, "ladder values, coarse -> fine (default: see app/study/sweep.h)");
+  s->add_option("--levels", opts->o.levels, "default-ladder length (default 4)");
+  s->add_option("--tol", opts->o.tol, "relative tolerance on the QoI (default 0.01)");
+  s->add_option("--seeds", opts->o.seeds, "runs per point with seeds seed, seed+1, ... (default 1)");
+  s->add_option("--material", opts->o.material, "youngs_modulus: the material varied (default: the first)");
+  s->add_option("--set", opts->sets, "scene override key.path=value applied before the ladder");
+  s->add_option("--out", opts->o.out, "output folder (default sweep_out)");
+  s->add_flag("--quiet", opts->o.quiet, "no per-run lines");
+  s->callback([opts] {
+    model::SceneDoc base = model::SceneDoc::parse_file(opts->scene);
+    for (const auto& a : opts->sets) base.apply(a);
+    const study::SweepResult r = study::sweep(base, opts->o);
+    fmt::print("{}", r.table);
+    study::write_outputs(r, opts->o);
+    fmt::print("wrote {0}/sweep.csv, {0}/sweep.png{1}\n", opts->o.out.string(),
+               r.override_text.empty() ? "" : fmt::format(", {}/chosen_overrides.toml", opts->o.out.string()));
+  });
+
+  struct CalOpts {
+    std::string scene;
+    double target = 0.0, tol_deg = 0.5, mu_tol = 0.005;
+    std::vector<double> bracket;
+    int seeds = 1, max_evaluations = 8;
+    std::vector<std::string> sets;
+  };
+  auto c = std::make_shared<CalOpts>();
+  CLI::App* cal = group_subcommand(app, "calibrate", "calibrate an unmeasurable parameter against lab tests");
+  CLI::App* rr = cal->add_subcommand("rolling-resistance",
+                                     "mu_r (all [[interaction]]s) so that the simulated repose angle = the measured");
+  rr->add_option("scene", c->scene, "repose scene (e.g. datasets/scenes/repose_ch5.toml)")->required();
+  rr->add_option("--target", c->target, "measured repose angle, deg (Table 6.1)")->required();
+  rr->add_option("--bracket", c->bracket, "mu_r lo hi; the target must lie between their angles")->expected(2)->required();
+  rr->add_option("--tol-deg", c->tol_deg, "stop when |angle - target| <= this (deg, default 0.5)");
+  rr->add_option("--mu-tol", c->mu_tol, "stop when the bracket is narrower (default 0.005)");
+  rr->add_option("--seeds", c->seeds, "runs per mu_r (default 1)");
+  rr->add_option("--max-evaluations", c->max_evaluations, "default 8");
+  rr->add_option("--set", c->sets, "scene override key.path=value");
+  rr->callback([c] {
+    model::SceneDoc base = model::SceneDoc::parse_file(c->scene);
+    for (const auto& a : c->sets) base.apply(a);
+    const long seed0 = base.has("seed") ? std::stol(base.get("seed")) : 1;
+    auto f = [&](double mu) {
+      std::vector<double> angles;
+      for (int k = 0; k < c->seeds; ++k) {
+        model::SceneDoc d = study::with_rolling_resistance(base, mu);
+        if (c->seeds > 1) d.set("seed", std::to_string(seed0 + k));
+        const auto r = study::run_once(d, "repose_angle");
+        angles.push_back(r.qoi);
+        fmt::print(stderr, "  mu_r = {:.4f} seed {}: {:.2f} deg ({:.1f} s)\n", mu, seed0 + k, r.qoi, r.wall_s);
+      }
+      const auto st = summarize(angles);
+      return study::Evaluation{mu, st.mean, c->seeds > 1 ? st.sd : 0.0};
+    };
+    const auto r = study::bracket_root(f, c->bracket[0], c->bracket[1], c->target, c->tol_deg, c->mu_tol,
+                                       c->max_evaluations);
+    fmt::print("rolling law: {}; target {:.2f} deg\n", base.get("contact.rolling"), c->target);
+    fmt::print("  {:>8} | {:>10} | {:>6}\n", "mu_r", "angle deg", "sd");
+    for (const auto& e : r.history) fmt::print("  {:>8.4f} | {:>10.2f} | {:>6.2f}\n", e.mu, e.angle, e.sd);
+    fmt::print("mu_r = {:.4f}: angle {:.2f} +- {:.2f} deg (seed sd, {} seed(s)), objective |angle - target| = "
+               "{:.2f} deg{}\n", r.mu, r.best.angle, r.best.sd, c->seeds, std::abs(r.best.angle - c->target),
+               r.converged ? "" : " (NOT within --tol-deg: more evaluations or seeds needed)");
+  });
+}
+
+}  // namespace pastemix::app

@@ -1,0 +1,204 @@
+// SPDX-License-Identifier: MIT
+#include "app/study/sweep.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include "app/study/qoi.h"
+#include "base/error.h"
+#include "base/stats.h"
+
+namespace pastemix::app::study {
+namespace {
+
+std::string lit(double v) { return fmt::format("{:.10g}", v); }
+
+std::string material_name(const model::SceneDoc& d, const SweepOptions& o) {
+  if (!o.material.empty()) return o.material;
+  return d.get("material.0.name").substr(1, d.get("material.0.name").size() - 2);  // strip quotes
+}
+
+toml::array* factories(model::SceneDoc& d) { return d.root()["factory"].as_array(); }
+
+}  // namespace
+
+model::SceneDoc at_value(const model::SceneDoc& base, const SweepOptions& o, double value) {
+  model::SceneDoc d = base;
+  if (o.vary == "dt") {
+    d.set("time_step", lit(value));
+  } else if (o.vary == "youngs_modulus") {
+    const std::string key = "material." + material_name(base, o) + ".youngs_modulus";
+    const double e0 = std::stod(base.get(key));
+    const double dt0 = std::stod(base.get("time_step"));
+    d.set(key, lit(value));
+    d.set("time_step", lit(dt0 * std::sqrt(e0 / value)));
+  } else if (o.vary == "psd_cut") {
+    toml::array* fs = factories(d);
+    if (!fs) throw InputError(base.path(), 0, "factory", "--vary psd_cut needs a [[factory]] with a PSD");
+    for (auto& f : *fs) {
+      auto* psd = f.as_table() ? (*f.as_table())["psd"].as_array() : nullptr;
+      if (!psd) continue;
+      double kept = 0.0;
+      toml::array out;
+      for (auto& i : *psd) {
+        const auto& t = *i.as_table();
+        if (t["d_max"].value<double>().value_or(0) > value) {
+          out.push_back(t);
+          kept += t["fraction"].value<double>().value_or(0);
+        }
+      }
+      if (out.empty() || kept <= 0)
+        throw InputError(base.path(), 0, "psd_cut", fmt::format("a cut at {} m removes every interval", value));
+      for (auto& i : out) {
+        auto& t = *i.as_table();
+        t.insert_or_assign("fraction", t["fraction"].value<double>().value_or(0) / kept);
+      }
+      f.as_table()->insert_or_assign("psd", std::move(out));
+    }
+  } else {
+    throw InputError("", 0, "--vary", "'" + o.vary + "' is not one of dt, youngs_modulus, psd_cut");
+  }
+  return d;
+}
+
+std::vector<double> default_ladder(const model::SceneDoc& base, const SweepOptions& o) {
+  std::vector<double> v;
+  if (o.vary == "dt") {
+    const double dt = std::stod(base.get("time_step"));
+    for (int k = 0; k < o.levels; ++k) v.push_back(dt / std::pow(2.0, k));
+  } else if (o.vary == "youngs_modulus") {
+    const double e0 = std::stod(base.get("material." + material_name(base, o) + ".youngs_modulus"));
+    for (int k = o.levels - 1; k >= 0; --k) v.push_back(e0 / std::pow(10.0, k));
+  } else if (o.vary == "psd_cut") {
+    model::SceneDoc d = base;
+    std::vector<double> cuts;
+    if (auto* fs = factories(d))
+      for (auto& f : *fs)
+        if (auto* psd = f.as_table() ? (*f.as_table())["psd"].as_array() : nullptr)
+          for (auto& i : *psd) cuts.push_back((*i.as_table())["d_min"].value<double>().value_or(0));
+    std::sort(cuts.begin(), cuts.end(), std::greater<>());
+    cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
+    // Coarsest first: the largest cut that keeps an interval, down to no cut.
+    for (double c : cuts) v.push_back(c);
+    if (!v.empty()) v.erase(v.begin());  // cutting at the largest d_min would remove everything
+    v.push_back(0.0);
+  }
+  return v;
+}
+
+RunCost run_once(const model::SceneDoc& doc, const std::string& qoi_name) {
+  const QoiDef& q = find_qoi(qoi_name);
+  const model::Scene s = doc.load();
+  model::World w = model::make_world(s);
+  const auto t0 = std::chrono::steady_clock::now();
+  const long n = static_cast<long>(std::llround(s.end_time / s.config.dt));
+  double best = -1e300;
+  for (long k = 0; k < n; ++k) {
+    w.step();
+    if (k % 50 == 0) w.check();
+    if (q.max_over_steps) best = std::max(best, q.eval(w));
+  }
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return {q.max_over_steps ? best : q.eval(w), wall, static_cast<double>(n) * static_cast<double>(s.particles.size()),
+          s.particles.size()};
+}
+
+SweepResult sweep(const model::SceneDoc& base, const SweepOptions& o) {
+  find_qoi(o.qoi);
+  if (o.seeds < 1) throw InputError("", 0, "--seeds", "must be >= 1");
+  if (!(o.tol > 0)) throw InputError("", 0, "--tol", "must be > 0");
+  SweepResult r;
+  const std::vector<double> values = o.values.empty() ? default_ladder(base, o) : o.values;
+  if (values.empty()) throw InputError(base.path(), 0, "--values", "the ladder is empty");
+  const long seed0 = base.has("seed") ? std::stol(base.get("seed")) : 1;
+  for (double v : values) {
+    const model::SceneDoc d = at_value(base, o, v);
+    std::vector<double> q, wall;
+    double work = 0.0;
+    for (int s = 0; s < o.seeds; ++s) {
+      model::SceneDoc ds = d;
+      if (o.seeds > 1) {
+        if (ds.has("seed")) ds.set("seed", std::to_string(seed0 + s));
+        else if (s > 0) throw InputError(base.path(), 0, "seed", "--seeds > 1 needs a top-level seed key");
+      }
+      const RunCost rc = run_once(ds, o.qoi);
+      const double qv = rc.qoi, w = rc.wall_s;
+      q.push_back(qv);
+      wall.push_back(w);
+      work += rc.work / o.seeds;
+      if (!o.quiet)
+        fmt::print(stderr, "  {} = {:.4g} seed {}: {} = {:.6g} ({} particles, {:.0f} steps, {:.2f} s)\n", o.vary, v,
+                   seed0 + s, o.qoi, qv, rc.particles, rc.work / static_cast<double>(rc.particles), w);
+    }
+    const auto sq = summarize(q), sw = summarize(wall);
+    r.points.push_back({v, sq.mean, o.seeds > 1 ? sq.sd : 0.0, o.seeds, sw.mean, work});
+    r.per_seed.push_back(q);
+  }
+  r.ref = reference_of(r.points, o.vary == "dt" ? 2.0 : 0.0);
+  r.choice = choose(r.points, r.ref, o.tol);
+  const double cost_ref = r.points.back().work;
+  std::ostringstream t;
+  t << fmt::format("sweep {} on {}: QoI {} ({}), tol {:g}, {} seed(s)\n", o.vary, base.path(), o.qoi,
+                   find_qoi(o.qoi).unit, o.tol, o.seeds);
+  t << fmt::format("reference {} = {:.6g} from {}\n", o.qoi, r.ref.qoi, r.ref.method);
+  t << "cost = particle-steps (deterministic); wall s = the step loop on this machine\n";
+  t << fmt::format("  {:>12} | {:>12} | {:>9} | {:>10} | {:>10} | {:>9} | {:>10}\n", o.vary, "QoI (mean)", "sd",
+                   "rel error", "p-steps", "wall s", "cost/finest");
+  for (std::size_t k = 0; k < r.points.size(); ++k) {
+    const auto& p = r.points[k];
+    t << fmt::format("  {:>12.4g} | {:>12.6g} | {:>9.3g} | {:>10.3e} | {:>10.4g} | {:>9.4f} | {:>10.4f}{}\n", p.value,
+                     p.qoi, p.qoi_sd, r.choice.rel_error[k], p.work, p.wall_s, p.work / cost_ref,
+                     static_cast<int>(k) == r.choice.index ? "  <- chosen" : "");
+  }
+  if (r.choice.index < 0) {
+    t << "no setting is within the tolerance of the reference\n";
+  } else {
+    const double v = r.points[static_cast<std::size_t>(r.choice.index)].value;
+    const model::SceneDoc d = at_value(base, o, v);
+    std::ostringstream ov;
+    ov << fmt::format("# pastemix sweep --vary {} --qoi {} --tol {:g}: chosen {} = {:.6g}\n", o.vary, o.qoi, o.tol,
+                      o.vary, v);
+    if (o.vary == "psd_cut") {
+      toml::array* fs = factories(const_cast<model::SceneDoc&>(d));
+      for (std::size_t i = 0; fs && i < fs->size(); ++i)
+        ov << "factory." << i << ".psd = " << d.get("factory." + std::to_string(i) + ".psd") << "\n";
+    } else {
+      if (o.vary == "youngs_modulus") {
+        const std::string key = "material." + material_name(base, o) + ".youngs_modulus";
+        ov << key << " = " << d.get(key) << "\n";
+      }
+      ov << "time_step = " << d.get("time_step") << "\n";
+    }
+    r.override_text = ov.str();
+    t << fmt::format("chosen: {} = {:.6g}\n", o.vary, v);
+  }
+  r.table = t.str();
+  return r;
+}
+
+void write_outputs(const SweepResult& r, const SweepOptions& o) {
+  std::filesystem::create_directories(o.out);
+  {
+    std::ofstream c(o.out / "sweep.csv");
+    c << o.vary << ",qoi_mean,qoi_sd,seeds,rel_error,particle_steps,wall_s,cost_ratio,chosen,reference,reference_method\n";
+    for (std::size_t k = 0; k < r.points.size(); ++k) {
+      const auto& p = r.points[k];
+      c << fmt::format("{:.10g},{:.10g},{:.6g},{},{:.6g},{:.6g},{:.6g},{:.6g},{},{:.10g},\"{}\"\n", p.value, p.qoi,
+                       p.qoi_sd, p.seeds, r.choice.rel_error[k], p.work, p.wall_s, p.work / r.points.back().work,
+                       static_cast<int>(k) == r.choice.index ? 1 : 0, r.ref.qoi, r.ref.method);
+    }
+  }
+  if (!r.override_text.empty()) std::ofstream(o.out / "chosen_overrides.toml") << r.override_text;
+  const std::string py = std::string(PASTEMIX_SOURCE_DIR) + "/scripts/plot_sweep.py";
+  const std::string cmd = "/usr/bin/python3 '" + py + "' '" + (o.out / "sweep.csv").string() + "' '" +
+                          (o.out / "sweep.png").string() + "' " + o.qoi + " >/dev/null 2>&1";
+  if (std::system(cmd.c_str()) != 0) fmt::print(stderr, "warning: no PNG (python/matplotlib failed)\n");
+}
+
+}  // namespace pastemix::app::study

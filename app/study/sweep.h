@@ -1,0 +1,63 @@
+// SPDX-License-Identifier: MIT
+// `pastemix sweep`: one scene run over a ladder of one setting, a QoI and the wall-clock cost per run,
+// the reference and choice of ladder.h, and the outputs (table, CSV, PNG, override file).
+//
+// Ladders (coarse -> fine; the finest is the reference unless Richardson applies):
+//   dt             time_step halved `levels - 1` times from the scene's value (r = 2, Richardson allowed)
+//   youngs_modulus E of `material` from E0 / 10^(levels-1) up to the scene's E0; the time step is scaled by
+//                  sqrt(E0 / E) so every run sits at the same fraction of its Rayleigh time (the reason to
+//                  reduce E at all is the larger step)
+//   psd_cut        d_cut (m): every [[factory]]'s intervals with d_max <= d_cut are dropped and the rest
+//                  renormalised (base/psd.h cut_below); default values: the scene's interval lower sieves,
+//                  largest first, down to no cut (0)
+// --values replaces the default ladder (given coarse -> fine).
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "app/study/ladder.h"
+#include "model/scene_override.h"
+
+namespace pastemix::app::study {
+
+struct SweepOptions {
+  std::string vary;               // dt | youngs_modulus | psd_cut
+  std::string qoi;
+  std::vector<double> values;     // empty: default ladder
+  int levels = 4;
+  double tol = 0.01;              // relative
+  int seeds = 1;
+  std::string material;           // youngs_modulus: which material (default: the first)
+  std::filesystem::path out = "sweep_out";
+  bool quiet = false;
+};
+
+struct SweepResult {
+  std::vector<LadderPoint> points;
+  std::vector<std::vector<double>> per_seed;  // QoI per point per seed
+  Reference ref;
+  Choice choice;
+  std::string override_text;      // the chosen setting as override lines
+  std::string table;              // the printed speed-vs-error table
+};
+
+// Applies the ladder value to a copy of the scene (all the TOML edits live here).
+model::SceneDoc at_value(const model::SceneDoc& base, const SweepOptions& o, double value);
+std::vector<double> default_ladder(const model::SceneDoc& base, const SweepOptions& o);
+
+struct RunCost {
+  double qoi = 0.0;
+  double wall_s = 0.0;   // wall-clock seconds of the step loop (scene set-up and insertion excluded)
+  double work = 0.0;     // particles x steps
+  std::size_t particles = 0;
+};
+// One run in-process (no HDF5).
+RunCost run_once(const model::SceneDoc& doc, const std::string& qoi);
+
+SweepResult sweep(const model::SceneDoc& base, const SweepOptions& o);
+// Writes <out>/sweep.csv, <out>/chosen_overrides.toml, <out>/sweep.png (PNG only if python works).
+void write_outputs(const SweepResult& r, const SweepOptions& o);
+
+}  // namespace pastemix::app::study

@@ -1,0 +1,84 @@
+// SPDX-License-Identifier: MIT
+// The sweep on real runs: the two-sphere Hertz impact (Table 5.1 material 1) on a coarse dt ladder, the
+// PSD-cut edit, and the command's outputs.
+#include "app/study/sweep.h"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "base/error.h"
+#include "tests/run_command.h"
+
+using namespace pastemix;
+using namespace pastemix::app::study;
+
+namespace {
+
+// Hertz (1882) peak force of two equal elastic spheres closing at v: delta_max = (15 m* v^2 / (16 E* sqrt(R*)))^(2/5),
+// F_max = 4/3 E* sqrt(R*) delta_max^1.5.
+double hertz_peak_force(double E, double rho, double nu, double R, double v) {
+  const double m = rho * 4.0 / 3.0 * M_PI * R * R * R, ms = m / 2, Rs = R / 2, Es = E / (2 * (1 - nu * nu));
+  const double d = std::pow(15 * ms * v * v / (16 * Es * std::sqrt(Rs)), 0.4);
+  return 4.0 / 3.0 * Es * std::sqrt(Rs) * std::pow(d, 1.5);
+}
+
+}  // namespace
+
+TEST_CASE("Hertz impact, material 1: the chosen dt's peak force is within 1 % of the Hertz solution") {
+  const auto base = model::SceneDoc::parse_file(test::source_path("datasets/scenes/hertz_impact_m1.toml"));
+  SweepOptions o;
+  o.vary = "dt";
+  o.qoi = "peak_force";
+  o.values = {1.28e-5, 6.4e-6, 3.2e-6, 1.6e-6, 8e-7};  // 1.2 down to 0.07 Rayleigh times
+  o.tol = 0.01;
+  o.quiet = true;
+  const SweepResult r = sweep(base, o);
+  MESSAGE(r.table);
+  const double exact = hertz_peak_force(200e9, 7750, 0.3, 0.01, 20.0);  // 35.62 kN
+  // The reference (Richardson or finest) agrees with Hertz far inside the tolerance ...
+  CHECK(std::abs(r.ref.qoi / exact - 1) < 2e-3);
+  // ... and the chosen step, chosen against that reference, is within the tolerance of the exact value too
+  // (tol plus the reference's own error).
+  REQUIRE(r.choice.index >= 0);
+  const auto& c = r.points[static_cast<std::size_t>(r.choice.index)];
+  CHECK(std::abs(c.qoi / exact - 1) <= o.tol + 2e-3);
+  // The coarsest step (1.2 Rayleigh times) is not good enough: the choice is not trivial.
+  CHECK(r.choice.rel_error[0] > o.tol);
+}
+
+TEST_CASE("psd_cut drops the intervals below the cut and renormalises - a cut above all is an error") {
+  const auto base = model::SceneDoc::parse_file(test::source_path("datasets/scenes/funnel_lift.toml"));
+  SweepOptions o;
+  o.vary = "psd_cut";
+  model::SceneDoc d = base;
+  d.set("factory.0.psd", "[{d_min = 1e-3, d_max = 2e-3, fraction = 0.2}, {d_min = 2e-3, d_max = 4e-3, fraction = 0.8}]");
+  const model::SceneDoc cut = at_value(d, o, 2e-3);
+  CHECK(cut.get("factory.0.psd.0.d_min") == "0.002");
+  CHECK(std::stod(cut.get("factory.0.psd.0.fraction")) == doctest::Approx(1.0));
+  CHECK_FALSE(cut.has("factory.0.psd.1"));
+  CHECK(default_ladder(d, o) == std::vector<double>{1e-3, 0.0});
+  CHECK_THROWS_AS(at_value(d, o, 4e-3), InputError);
+}
+
+TEST_CASE("pastemix sweep writes the table, CSV, override file - a bad --qoi is exit 2") {
+  const auto dir = std::filesystem::temp_directory_path() / "pastemix_sweep_test";
+  std::filesystem::remove_all(dir);
+  const std::string scene = test::source_path("datasets/scenes/hertz_impact_m3.toml");
+  const auto r = test::run_pastemix("sweep '" + scene + "' --vary dt --qoi max_overlap --values 8e-7 4e-7 2e-7 --tol 0.02 --quiet --out '" +
+                                    dir.string() + "'");
+  CHECK(r.exit_code == 0);
+  CHECK(r.output.find("<- chosen") != std::string::npos);
+  CHECK(std::filesystem::exists(dir / "sweep.csv"));
+  REQUIRE(std::filesystem::exists(dir / "chosen_overrides.toml"));
+  // The override file runs.
+  const auto run = test::run_pastemix("run '" + scene + "' --quiet --out '" + dir.string() + "' --overrides '" +
+                                      (dir / "chosen_overrides.toml").string() + "'");
+  CHECK(run.exit_code == 0);
+  const auto bad = test::run_pastemix("sweep '" + scene + "' --vary dt --qoi nothing --out '" + dir.string() + "'");
+  CHECK(bad.exit_code == 2);
+  CHECK(bad.output.find("--qoi") != std::string::npos);
+  std::filesystem::remove_all(dir);
+}
