@@ -56,8 +56,8 @@ void pair_pass(const std::vector<typename Law::Params>& table, const StepContext
       g.n = d * (1.0 / dist);
       g.overlap = rsum - dist;
       const double arm_a = p.radius[a] - 0.5 * g.overlap, arm_b = p.radius[b] - 0.5 * g.overlap;
-      g.R_star = p.radius[a] * p.radius[b] / rsum;
-      g.m_star = p.mass[a] * p.mass[b] / (p.mass[a] + p.mass[b]);
+      g.R_star = L.r_star[k];
+      g.m_star = L.m_star[k];
       g.v_rel = p.v[b] - p.v[a];
       if (rot) {
         g.v_rel += cross(p.omega[b], g.n * (-arm_b)) - cross(p.omega[a], g.n * arm_a);
@@ -214,6 +214,13 @@ void PairList::rebuild(const CandidatePairs& c, const Particles& p) {
   history = std::move(new_hist);
   touching = std::move(new_touch);
   out.assign(n, Out{});
+  r_star.resize(n);
+  m_star.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::uint32_t a = i[k], b = j[k];
+    r_star[k] = p.radius[a] * p.radius[b] / (p.radius[a] + p.radius[b]);
+    m_star[k] = p.mass[a] * p.mass[b] / (p.mass[a] + p.mass[b]);
+  }
   // CSR per particle, entries in ascending pair order.
   const std::size_t np = p.size();
   start.assign(np + 1, 0);
