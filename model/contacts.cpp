@@ -106,10 +106,12 @@ void wall_pass(const std::vector<typename Law::Params>& table, const StepContext
   const bool constant_roll = ctx.rolling == RollingLaw::constant_torque;
   const int nw = static_cast<int>(walls.size());
   const int w = wc.width;
-  std::vector<Vec3> shift(walls.size()), vel(walls.size());
-  std::vector<char> active(walls.size());
+  std::vector<Vec3> shift(walls.size()), vel(walls.size()), origin(walls.size());
+  std::vector<char> active(walls.size()), rect(walls.size());
   for (int k = 0; k < nw; ++k) {
     shift[k] = walls[k].displacement(ctx.t);
+    origin[k] = walls[k].origin + shift[k];
+    rect[k] = walls[k].kind == WallKind::rectangle;
     vel[k] = walls[k].velocity_at(ctx.t);
     active[k] = walls[k].active(ctx.t);
   }
@@ -121,7 +123,9 @@ void wall_pass(const std::vector<typename Law::Params>& table, const StepContext
       const std::size_t slot = static_cast<std::size_t>(a) * nw + k;
       double* hist = w ? &wc.history[slot * w] : nullptr;
       Vec3 n_to_wall;
-      const double dist = active[k] ? wall_distance(walls[k], shift[k], p.x[a], &n_to_wall) : 1e300;
+      const double dist = !active[k] ? 1e300
+                          : rect[k]  ? rectangle_distance(walls[k], origin[k], p.x[a], &n_to_wall)
+                                     : wall_distance(walls[k], shift[k], p.x[a], &n_to_wall);
       const double overlap = p.radius[a] - dist;
       if (overlap <= 0.0) {
         if (wc.touching[slot]) std::fill(hist, hist + w, 0.0);
