@@ -60,7 +60,8 @@ void pair_pass(const std::vector<typename Law::Params>& table, const StepContext
       g.m_star = L.m_star[k];
       g.v_rel = p.v[b] - p.v[a];
       if (rot) {
-        g.v_rel += cross(p.omega[b], g.n * (-arm_b)) - cross(p.omega[a], g.n * arm_a);
+        // omega_b x (-arm_b n) - omega_a x (arm_a n) = -(arm_a omega_a + arm_b omega_b) x n: one cross.
+        g.v_rel -= cross(p.omega[a] * arm_a + p.omega[b] * arm_b, g.n);
         g.w_rel = p.omega[a] - p.omega[b];
       }
       g.arm_i = arm_a;
@@ -71,8 +72,9 @@ void pair_pass(const std::vector<typename Law::Params>& table, const StepContext
         p.f[a] += r.force_i;
         p.f[b] -= r.force_i;
         if (rot) {
-          p.torque[a] += cross(g.n * arm_a, r.tangential_i) + r.rolling_torque_i;
-          p.torque[b] += cross(g.n * arm_b, r.tangential_i) - r.rolling_torque_i;
+          const Vec3 nxt = cross(g.n, r.tangential_i);  // (arm n) x F_t = arm (n x F_t): one cross per pair
+          p.torque[a] += nxt * arm_a + r.rolling_torque_i;
+          p.torque[b] += nxt * arm_b - r.rolling_torque_i;
           if (constant_roll) {
             p.rolling_capacity[a] += prm.rolling_friction * r.normal_force * arm_a;
             p.rolling_capacity[b] += prm.rolling_friction * r.normal_force * arm_b;
@@ -82,8 +84,9 @@ void pair_pass(const std::vector<typename Law::Params>& table, const StepContext
         PairList::Out& o = L.out[k];
         o.force_i = r.force_i;
         if (rot) {
-          o.torque_i = cross(g.n * arm_a, r.tangential_i) + r.rolling_torque_i;
-          o.torque_j = cross(g.n * arm_b, r.tangential_i) - r.rolling_torque_i;
+          const Vec3 nxt = cross(g.n, r.tangential_i);
+          o.torque_i = nxt * arm_a + r.rolling_torque_i;
+          o.torque_j = nxt * arm_b - r.rolling_torque_i;
           if (constant_roll) {
             o.roll_i = prm.rolling_friction * r.normal_force * arm_a;
             o.roll_j = prm.rolling_friction * r.normal_force * arm_b;
