@@ -56,11 +56,12 @@ void pair_pass(const std::vector<typename Law::Params>& table, const StepContext
       g.n = d * (1.0 / dist);
       g.overlap = rsum - dist;
       const double arm_a = p.radius[a] - 0.5 * g.overlap, arm_b = p.radius[b] - 0.5 * g.overlap;
-      g.R_star = p.radius[a] * p.radius[b] / rsum;
-      g.m_star = p.mass[a] * p.mass[b] / (p.mass[a] + p.mass[b]);
+      g.R_star = L.r_star[k];
+      g.m_star = L.m_star[k];
       g.v_rel = p.v[b] - p.v[a];
       if (rot) {
-        g.v_rel += cross(p.omega[b], g.n * (-arm_b)) - cross(p.omega[a], g.n * arm_a);
+        // omega_b x (-arm_b n) - omega_a x (arm_a n) = -(arm_a omega_a + arm_b omega_b) x n: one cross.
+        g.v_rel -= cross(p.omega[a] * arm_a + p.omega[b] * arm_b, g.n);
         g.w_rel = p.omega[a] - p.omega[b];
       }
       g.arm_i = arm_a;
@@ -71,8 +72,9 @@ void pair_pass(const std::vector<typename Law::Params>& table, const StepContext
         p.f[a] += r.force_i;
         p.f[b] -= r.force_i;
         if (rot) {
-          p.torque[a] += cross(g.n * arm_a, r.tangential_i) + r.rolling_torque_i;
-          p.torque[b] += cross(g.n * arm_b, r.tangential_i) - r.rolling_torque_i;
+          const Vec3 nxt = cross(g.n, r.tangential_i);  // (arm n) x F_t = arm (n x F_t): one cross per pair
+          p.torque[a] += nxt * arm_a + r.rolling_torque_i;
+          p.torque[b] += nxt * arm_b - r.rolling_torque_i;
           if (constant_roll) {
             p.rolling_capacity[a] += prm.rolling_friction * r.normal_force * arm_a;
             p.rolling_capacity[b] += prm.rolling_friction * r.normal_force * arm_b;
@@ -82,8 +84,9 @@ void pair_pass(const std::vector<typename Law::Params>& table, const StepContext
         PairList::Out& o = L.out[k];
         o.force_i = r.force_i;
         if (rot) {
-          o.torque_i = cross(g.n * arm_a, r.tangential_i) + r.rolling_torque_i;
-          o.torque_j = cross(g.n * arm_b, r.tangential_i) - r.rolling_torque_i;
+          const Vec3 nxt = cross(g.n, r.tangential_i);
+          o.torque_i = nxt * arm_a + r.rolling_torque_i;
+          o.torque_j = nxt * arm_b - r.rolling_torque_i;
           if (constant_roll) {
             o.roll_i = prm.rolling_friction * r.normal_force * arm_a;
             o.roll_j = prm.rolling_friction * r.normal_force * arm_b;
@@ -106,10 +109,12 @@ void wall_pass(const std::vector<typename Law::Params>& table, const StepContext
   const bool constant_roll = ctx.rolling == RollingLaw::constant_torque;
   const int nw = static_cast<int>(walls.size());
   const int w = wc.width;
-  std::vector<Vec3> shift(walls.size()), vel(walls.size());
-  std::vector<char> active(walls.size());
+  std::vector<Vec3> shift(walls.size()), vel(walls.size()), origin(walls.size());
+  std::vector<char> active(walls.size()), rect(walls.size());
   for (int k = 0; k < nw; ++k) {
     shift[k] = walls[k].displacement(ctx.t);
+    origin[k] = walls[k].origin + shift[k];
+    rect[k] = walls[k].kind == WallKind::rectangle;
     vel[k] = walls[k].velocity_at(ctx.t);
     active[k] = walls[k].active(ctx.t);
   }
@@ -121,7 +126,9 @@ void wall_pass(const std::vector<typename Law::Params>& table, const StepContext
       const std::size_t slot = static_cast<std::size_t>(a) * nw + k;
       double* hist = w ? &wc.history[slot * w] : nullptr;
       Vec3 n_to_wall;
-      const double dist = active[k] ? wall_distance(walls[k], shift[k], p.x[a], &n_to_wall) : 1e300;
+      const double dist = !active[k] ? 1e300
+                          : rect[k]  ? rectangle_distance(walls[k], origin[k], p.x[a], &n_to_wall)
+                                     : wall_distance(walls[k], shift[k], p.x[a], &n_to_wall);
       const double overlap = p.radius[a] - dist;
       if (overlap <= 0.0) {
         if (wc.touching[slot]) std::fill(hist, hist + w, 0.0);
@@ -214,6 +221,13 @@ void PairList::rebuild(const CandidatePairs& c, const Particles& p) {
   history = std::move(new_hist);
   touching = std::move(new_touch);
   out.assign(n, Out{});
+  r_star.resize(n);
+  m_star.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::uint32_t a = i[k], b = j[k];
+    r_star[k] = p.radius[a] * p.radius[b] / (p.radius[a] + p.radius[b]);
+    m_star[k] = p.mass[a] * p.mass[b] / (p.mass[a] + p.mass[b]);
+  }
   // CSR per particle, entries in ascending pair order.
   const std::size_t np = p.size();
   start.assign(np + 1, 0);

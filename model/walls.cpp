@@ -29,18 +29,8 @@ double wall_distance(const Wall& w, const Vec3& shift, const Vec3& p, Vec3* n_to
       *n_to_wall = -w.normal;
       return d;
     }
-    case WallKind::rectangle: {
-      const Vec3 rel = p - o;
-      const double iu = w.inv_u2 > 0.0 ? w.inv_u2 : 1.0 / norm2(w.u);
-      const double iv = w.inv_v2 > 0.0 ? w.inv_v2 : 1.0 / norm2(w.v);
-      const double su = clamp_unit(dot(rel, w.u) * iu, -1.0, 1.0);
-      const double sv = clamp_unit(dot(rel, w.v) * iv, -1.0, 1.0);
-      const Vec3 c = o + w.u * su + w.v * sv;
-      const Vec3 d = c - p;
-      const double len = norm(d);
-      *n_to_wall = len > 0.0 ? d * (1.0 / len) : Vec3{0, 0, -1};
-      return len;
-    }
+    case WallKind::rectangle:
+      return rectangle_distance(w, o, p, n_to_wall);
     case WallKind::revolution: {
       const double dx = p.x - o.x, dy = p.y - o.y;
       const double rho = std::sqrt(dx * dx + dy * dy);

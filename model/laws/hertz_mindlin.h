@@ -94,19 +94,24 @@ struct HertzMindlin {
 
     // Tangential spring: rotate the stored displacement into the current tangent plane (keeping its
     // length), then add this step's tangential slip.
+    // One sqrt for the rescale (sqrt(|xi|^2 / |xi_t|^2) instead of |xi| / |xi_t|), none for a new contact.
     Vec3 xi{history[0], history[1], history[2]};
-    const double xi_len = norm(xi);
-    xi -= g.n * dot(xi, g.n);
-    const double xi_len2 = norm(xi);
-    if (xi_len2 > 0.0) xi *= xi_len / xi_len2;
+    const double xi_old2 = norm2(xi);
+    if (xi_old2 > 0.0) {
+      xi -= g.n * dot(xi, g.n);
+      const double xi_new2 = norm2(xi);
+      if (xi_new2 > 0.0) xi *= std::sqrt(xi_old2 / xi_new2);
+    }
     const Vec3 vt = g.v_rel - g.n * vn;
     xi += vt * g.dt;
     const double St = 8.0 * p.G_star * sqrt_Rd;
     Vec3 ft = xi * St + vt * (p.damping * sqrt_sn_m * p.sqrt_st_over_sn);  // on i: drags i along with j
-    const double ft_len = norm(ft);
+    // Coulomb test on squares: the sqrt is taken only for a slipping contact (most contacts stick).
+    const double ft_len2 = norm2(ft);
     const double ft_max = p.friction * r.normal_force;
-    if (ft_len > ft_max) {
+    if (ft_len2 > ft_max * ft_max) {
       // Slip: the friction force sits on the Coulomb limit and the spring carries all of it.
+      const double ft_len = std::sqrt(ft_len2);
       ft = ft_len > 0.0 ? ft * (ft_max / ft_len) : Vec3{};
       xi = St > 0.0 ? ft * (1.0 / St) : Vec3{};
     }
