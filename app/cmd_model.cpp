@@ -1,21 +1,77 @@
 // SPDX-License-Identifier: MIT
-// `pastemix run SCENE.toml [--out DIR] [--threads N] [--quiet]`: runs an f-DEM scene, writes HDF5 + XDMF,
-// prints the per-stage profile.
+// `pastemix run SCENE.toml [--out DIR] [--threads N] [--quiet] [--realizations N [--seed S]]`: runs an f-DEM
+// scene, writes HDF5 + XDMF, prints the per-stage profile. With --realizations N: N seeded realizations, the
+// scene's `seed` set to S, S+1, ... (S default: the scene's seed), run one after another with all threads,
+// written as NAME_r0 ... NAME_r{N-1}; every factory takes its seed from the scene seed, so the rock sizes and
+// positions change (a factory with its own `seed` would not: rejected).
 #include <omp.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
+#include <string>
+#include <vector>
+
+#include <toml++/toml.h>
 
 #include <fmt/format.h>
 
 #include "app/commands.h"
+#include "base/error.h"
 #include "model/run.h"
 #include "model/scene.h"
 #include "model/scene_override.h"
 
 namespace pastemix::app {
+
+namespace {
+
+void run_one(const model::Scene& scene, const std::string& out_dir, bool quiet, const std::string& stem) {
+  // The time step against the Rayleigh time of the smallest sphere (DESIGN.md section 3): informative,
+  // the right step is found by a convergence study, not by habit.
+  {
+    double tr = 1e300;
+    const auto& p = scene.particles;
+    for (std::size_t a = 0; a < p.size(); ++a) {
+      const auto& m = scene.materials[static_cast<std::size_t>(p.material[a])];
+      tr = std::min(tr, M_PI * p.radius[a] * std::sqrt(m.density / m.shear_modulus()) /
+                            (0.8766 + 0.163 * m.poisson_ratio));
+    }
+    fmt::print(stderr, "time step {:.3g} s = {:.1f} % of the Rayleigh time of the smallest sphere ({:.3g} s)\n",
+               scene.config.dt, 100.0 * scene.config.dt / tr, tr);
+  }
+  model::RunOptions ro;
+  ro.progress = !quiet;
+  ro.stem = stem;
+  const model::RunSummary r = model::run_scene(scene, out_dir, ro);
+  fmt::print("{} particles, {} steps of {:.3g} s, {} thread(s)\n", scene.particles.size(), r.steps, scene.config.dt,
+             r.threads);
+  fmt::print("{}", r.profile_table);
+  fmt::print("wrote {} and {}\n", r.h5.string(), r.xmf.string());
+}
+
+// A factory with its own `seed` would place the same rock in every realization.
+void reject_factory_seeds(const std::string& path) {
+  toml::table root;
+  try {
+    root = toml::parse_file(path);
+  } catch (const toml::parse_error& e) {
+    throw InputError(path, static_cast<int>(e.source().begin.line), "", std::string(e.description()));
+  }
+  if (const toml::array* fs = root["factory"].as_array()) {
+    for (const auto& f : *fs) {
+      const toml::table* t = f.as_table();
+      if (t && t->contains("seed"))
+        throw InputError(path, static_cast<int>(t->get("seed")->source().begin.line), "factory.seed",
+                         "--realizations sets the scene seed; a factory with its own seed would not change "
+                         "between realizations (remove it)");
+    }
+  }
+}
+
+}  // namespace
 
 void register_model_commands(CLI::App& app) {
   struct Opts {
@@ -25,6 +81,8 @@ void register_model_commands(CLI::App& app) {
     bool quiet = false;
     std::vector<std::string> sets;
     std::string overrides;
+    int realizations = 0;
+    long seed = -1;
   };
   auto opts = std::make_shared<Opts>();
   CLI::App* run = app.add_subcommand("run", "run an f-DEM scene (TOML) and write <stem>.h5 + <stem>.xmf");
@@ -34,32 +92,34 @@ void register_model_commands(CLI::App& app) {
   run->add_flag("--quiet", opts->quiet, "no progress line");
   run->add_option("--set", opts->sets, "override a scene value: key.path=value (model/scene_override.h)");
   run->add_option("--overrides", opts->overrides, "file of key.path = value lines (as pastemix sweep writes), applied before --set");
+  run->add_option("--realizations", opts->realizations, "run N seeded realizations, written as NAME_rK.h5/.xmf")
+      ->check(CLI::Range(1, 10000));
+  run->add_option("--seed", opts->seed, "first seed of the realizations (default: the scene's seed)")
+      ->check(CLI::Range(0L, 1L << 62));
   run->callback([opts] {
     if (opts->threads > 0) omp_set_num_threads(opts->threads);
     std::vector<std::string> sets;
     if (!opts->overrides.empty()) sets = model::read_override_file(opts->overrides);
     sets.insert(sets.end(), opts->sets.begin(), opts->sets.end());
-    const model::Scene scene = model::load_scene(opts->scene, sets);
-    // The time step against the Rayleigh time of the smallest sphere (DESIGN.md section 3): informative,
-    // the right step is found by a convergence study, not by habit.
-    {
-      double tr = 1e300;
-      const auto& p = scene.particles;
-      for (std::size_t a = 0; a < p.size(); ++a) {
-        const auto& m = scene.materials[static_cast<std::size_t>(p.material[a])];
-        tr = std::min(tr, M_PI * p.radius[a] * std::sqrt(m.density / m.shear_modulus()) /
-                              (0.8766 + 0.163 * m.poisson_ratio));
-      }
-      fmt::print(stderr, "time step {:.3g} s = {:.1f} % of the Rayleigh time of the smallest sphere ({:.3g} s)\n",
-                 scene.config.dt, 100.0 * scene.config.dt / tr, tr);
+    if (opts->realizations == 0) {
+      if (opts->seed >= 0) sets.push_back(fmt::format("seed={}", opts->seed));
+      run_one(model::load_scene(opts->scene, sets), opts->out, opts->quiet, "");
+      return;
     }
-    model::RunOptions ro;
-    ro.progress = !opts->quiet;
-    const model::RunSummary r = model::run_scene(scene, opts->out, ro);
-    fmt::print("{} particles, {} steps of {:.3g} s, {} thread(s)\n", scene.particles.size(), r.steps, scene.config.dt,
-               r.threads);
-    fmt::print("{}", r.profile_table);
-    fmt::print("wrote {} and {}\n", r.h5.string(), r.xmf.string());
+    reject_factory_seeds(opts->scene);
+    const long first = opts->seed >= 0 ? opts->seed : static_cast<long>(model::load_scene(opts->scene, sets).seed);
+    // All realizations are set up (and checked) before anything is written.
+    std::vector<model::Scene> scenes;
+    for (int k = 0; k < opts->realizations; ++k) {
+      std::vector<std::string> sk = sets;
+      sk.push_back(fmt::format("seed={}", first + k));
+      scenes.push_back(model::load_scene(opts->scene, sk));
+    }
+    const std::string stem = std::filesystem::path(opts->scene).stem().string();
+    for (int k = 0; k < opts->realizations; ++k) {
+      fmt::print("realization {} of {}: seed {}\n", k + 1, opts->realizations, first + k);
+      run_one(scenes[static_cast<std::size_t>(k)], opts->out, opts->quiet, fmt::format("{}_r{}", stem, k));
+    }
   });
 }
 

@@ -31,7 +31,8 @@ RunSummary run_scene(const Scene& scene, const std::filesystem::path& out_dir, c
   using Clock = std::chrono::steady_clock;
   RunSummary r;
   r.threads = omp_get_max_threads();
-  const std::string stem = std::filesystem::path(scene.path).stem().string();
+  const std::string stem =
+      opt.stem.empty() ? std::filesystem::path(scene.path).stem().string() : opt.stem;
   r.h5 = out_dir / (stem + ".h5");
   r.xmf = out_dir / (stem + ".xmf");
   StagedOutput staged;

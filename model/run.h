@@ -16,6 +16,7 @@ struct RunOptions {
   bool progress = true;        // throttled progress line on stderr
   double progress_every_s = 2.0;  // wall seconds between progress lines
   int check_every = 50;        // steps between full diagnostics (NaN and domain are checked every step)
+  std::string stem;            // output file stem; empty: the scene file's stem (realizations: NAME_rK)
 };
 
 struct RunSummary {
@@ -28,7 +29,7 @@ struct RunSummary {
   std::string profile_table;   // the per-stage table printed at the end of `pastemix run`
 };
 
-// Output files are named after the scene file's stem. On a RuntimeFailure nothing is left behind.
+// Output files are named after options.stem, else the scene file's stem. On a RuntimeFailure nothing is left behind.
 RunSummary run_scene(const Scene& scene, const std::filesystem::path& out_dir, const RunOptions& options = {});
 
 std::string format_profile(const Profile& p, long steps, double wall_seconds, std::size_t particles);
