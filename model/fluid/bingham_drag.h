@@ -26,6 +26,8 @@
 #include <array>
 #include <cmath>
 
+#include "base/drag_curves.h"
+
 namespace pastemix::model::fluid {
 
 struct BinghamFluid {
@@ -35,9 +37,11 @@ struct BinghamFluid {
 };
 
 // Re' of thesis eq. 4.14/4.18 for speed s (m/s) and diameter d (m).
+// The formula is the lab's (base/drag_curves.h), so the engine and the drag fit use one definition; an
+// inviscid, yield-free fluid (both terms zero) has no finite Re'.
 inline double reynolds_prime(const BinghamFluid& f, double s, double d) {
-  const double denom = f.yield_stress + f.plastic_viscosity * s / d;
-  return denom > 0.0 ? f.density * s * s / denom : INFINITY;
+  if (f.yield_stress <= 0.0 && f.plastic_viscosity <= 0.0) return INFINITY;
+  return drag::bingham_reynolds(f.density, s, f.yield_stress, f.plastic_viscosity, d);
 }
 
 // Drag magnitude D(s) in N; `cd` is any callable Cd(Re').
