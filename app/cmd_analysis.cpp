@@ -38,6 +38,7 @@ struct CommonOpts {
   std::vector<int> blocks{4, 3};
   int layers = 3;
   double layer_thickness = 0.03;  // m
+  std::string above_surface = "layer1";
   std::optional<double> surface_z, paste_density, solids, rock_density, K;
   std::optional<int> snapshot, lab_case;
   double rho_s = 2710.0, e_f = 0.6;
@@ -55,6 +56,11 @@ void add_common(CLI::App* cmd, CommonOpts& o) {
       ->capture_default_str();
   cmd->add_option("--layers", o.layers, "layers, k = 1 (top) ..")->capture_default_str();
   cmd->add_option("--layer-thickness", o.layer_thickness, "layer thickness, m")->capture_default_str();
+  cmd->add_option("--above-surface", o.above_surface,
+                  "where rock above the final surface counts: layer1 (in the block under it, as the lab cut the "
+                  "unmixed cone) or none (in no block)")
+      ->check(CLI::IsMember({"layer1", "none"}))
+      ->capture_default_str();
   cmd->add_option("--surface-z", o.surface_z, "final free-surface height, m (default: the file's fluid_surface_z)");
   cmd->add_option("--paste-density", o.paste_density, "paste density, kg/m3 (default: the file's fluid_density)");
   cmd->add_option("--solids", o.solids, "paste solids mass fraction, 0..1 (default: fluid_solids_fraction)");
@@ -84,6 +90,7 @@ BlockLayout layout_of(const CommonOpts& o) {
   L.count = {o.blocks[0], o.blocks[1]};
   L.layers = o.layers;
   L.layer_thickness = o.layer_thickness;
+  L.top_open = o.above_surface == "layer1";
   return L;
 }
 

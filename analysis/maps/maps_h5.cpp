@@ -12,7 +12,11 @@
 namespace pastemix::analysis {
 
 namespace {
-constexpr const char* kUnmixedRule =
+constexpr const char* kRuleOpen =
+    "rock above the final free surface is unmixed and counts in the layer-1 block under it (the lab cut the "
+    "unmixed cone with layer 1); rock below it is mixed (in a block, below the grid or beside it); layer 1 is "
+    "the top layer, depth measured from the final free surface; paste only below the surface";
+constexpr const char* kRuleClosed =
     "rock above the final free surface is unmixed and in no block; rock below it is mixed (in a block, below "
     "the grid or beside it); layer 1 is the top layer, depth measured from the final free surface";
 }
@@ -39,7 +43,7 @@ void write_maps_h5(const std::filesystem::path& path, const MixingMap& m, const 
   h5.attribute("/", "K_source", info.K_source.empty() ? std::string("unknown: S not computed") : info.K_source);
   h5.attribute("/", "rho_s_kg_m3", in.rho_s);
   h5.attribute("/", "e_f", in.e_f);
-  h5.attribute("/", "unmixed_rule", kUnmixedRule);
+  h5.attribute("/", "unmixed_rule", m.layout.top_open ? kRuleOpen : kRuleClosed);
   h5.attribute("/", "notes", r.notes.empty() ? std::string("(none)") : fmt::format("{}", fmt::join(r.notes, "; ")));
   const BlockLayout& L = m.layout;
   h5.create_group("/grid");
@@ -51,6 +55,7 @@ void write_maps_h5(const std::filesystem::path& path, const MixingMap& m, const 
   h5.attribute("/grid", "size_x_m", L.size[0]);
   h5.attribute("/grid", "size_y_m", L.size[1]);
   h5.attribute("/grid", "layer_thickness_m", L.layer_thickness);
+  h5.attribute("/grid", "top_open", static_cast<std::int64_t>(L.top_open ? 1 : 0));
   const std::vector<std::uint64_t> dims{static_cast<std::uint64_t>(L.count[0]), static_cast<std::uint64_t>(L.count[1]),
                                         static_cast<std::uint64_t>(L.layers)};
   h5.write("/blocks/C", m.C, dims);
@@ -59,6 +64,7 @@ void write_maps_h5(const std::filesystem::path& path, const MixingMap& m, const 
   h5.write("/blocks/flag", m.flag, dims);
   h5.write("/blocks/rock_mass_kg", m.rock_mass, dims);
   h5.write("/blocks/rock_volume_m3", m.rock_volume, dims);
+  h5.write("/blocks/rock_volume_submerged_m3", m.rock_volume_submerged, dims);
   h5.write("/blocks/paste_volume_m3", m.paste_volume, dims);
   h5.write("/blocks/paste_dried_mass_kg", m.paste_dried_mass, dims);
   h5.write("/blocks/block_volume_m3", m.block_volume, dims);
@@ -72,6 +78,7 @@ void write_maps_h5(const std::filesystem::path& path, const MixingMap& m, const 
   h5.attribute("/accounting", "in_blocks_kg", m.in_blocks);
   h5.attribute("/accounting", "below_grid_kg", m.below_grid);
   h5.attribute("/accounting", "beside_grid_kg", m.beside_grid);
+  h5.attribute("/accounting", "above_uncounted_kg", m.above_uncounted);
   h5.attribute("/accounting", "above_surface_kg", m.above_surface);
   h5.attribute("/accounting", "mixed_kg", m.mixed());
   h5.attribute("/accounting", "conservation_relative_error", m.conservation_error());
@@ -91,9 +98,11 @@ std::string maps_table(const MixingMap& m, const ResultSnapshot& r, const Mixing
                                                     : std::string("unknown: S not computed (give --K or --lab CASE)"));
   for (const auto& n : r.notes) o += "note: " + n + "\n";
   o += fmt::format("rock: poured {:.6f} kg = in blocks {:.6f} + below the grid {:.6f} + beside it {:.6f} + above "
-                   "the surface (unmixed) {:.6f}; relative error {:.1e}\n",
-                   m.poured, m.in_blocks, m.below_grid, m.beside_grid, m.above_surface, m.conservation_error());
-  o += fmt::format("mixed (submerged) {:.6f} kg, unmixed {:.6f} kg\n", m.mixed(), m.unmixed());
+                   "the surface in no block {:.6f}; relative error {:.1e}\n",
+                   m.poured, m.in_blocks, m.below_grid, m.beside_grid, m.above_uncounted, m.conservation_error());
+  o += fmt::format("mixed (submerged) {:.6f} kg, unmixed (above the surface) {:.6f} kg; rock above the surface {}\n",
+                   m.mixed(), m.unmixed(),
+                   L.top_open ? "counts in the layer-1 block under it (as the lab cut it)" : "is in no block");
   if (m.conservation_error() > 1e-9)
     o += fmt::format("warning: the accounting misses {:.1e} of the poured mass (more than 1e-9)\n", m.conservation_error());
   if (m.overfull_blocks)

@@ -6,10 +6,12 @@
 //   /      attrs software, command, created, result_file, seed, scene_hash, snapshot, snapshot_time_s,
 //          surface_z_m (+ _source), paste_density_kg_m3 (+ _source), solids_fraction (+ _source),
 //          rock_density_source, K_kg_m3 (NaN = unknown) + K_source, rho_s_kg_m3, e_f, unmixed_rule, notes
-//   /grid  attrs origin_x_m, origin_y_m, count_i, count_j, layers, size_x_m, size_y_m, layer_thickness_m
-//   /blocks/{C, S, S_raw, flag (int32, lab::SFlag), rock_mass_kg, rock_volume_m3, paste_volume_m3,
-//            paste_dried_mass_kg, block_volume_m3}, /blocks/block_id (strings, same order, flattened)
-//   /accounting attrs poured_kg, in_blocks_kg, below_grid_kg, beside_grid_kg, above_surface_kg (unmixed),
+//   /grid  attrs origin_x_m, origin_y_m, count_i, count_j, layers, size_x_m, size_y_m, layer_thickness_m,
+//          top_open (1: rock above the surface counts in layer 1)
+//   /blocks/{C, S, S_raw, flag (int32, lab::SFlag), rock_mass_kg, rock_volume_m3, rock_volume_submerged_m3,
+//            paste_volume_m3, paste_dried_mass_kg, block_volume_m3}, /blocks/block_id (strings, flattened)
+//   /accounting attrs poured_kg, in_blocks_kg, below_grid_kg, beside_grid_kg, above_uncounted_kg (above the
+//          surface and in no block), above_surface_kg (unmixed),
 //          mixed_kg (submerged), conservation_relative_error, overfull_blocks
 #pragma once
 

@@ -12,7 +12,9 @@ namespace pastemix::analysis {
 
 double MixingMap::conservation_error() const {
   if (!(poured > 0.0)) return 0.0;
-  return std::abs(poured - (in_blocks + below_grid + beside_grid + above_surface)) / poured;
+  const double grid = std::abs(poured - (in_blocks + below_grid + beside_grid + above_uncounted)) / poured;
+  const double surface = std::abs(poured - (submerged + above_surface)) / poured;
+  return std::max(grid, surface);
 }
 
 std::string block_name(int i, int j, int k) {
@@ -27,6 +29,7 @@ MixingMap mixing_map(const MixingInputs& in, const ParticleView& particles) {
   const std::size_t nb = in.layout.block_count();
   m.rock_mass = bm.rock_mass;
   m.rock_volume = bm.rock_volume;
+  m.rock_volume_submerged = bm.rock_volume_submerged;
   m.block_volume = bm.block_volume;
   m.paste_volume.assign(nb, 0.0);
   m.paste_dried_mass.assign(nb, 0.0);
@@ -39,6 +42,8 @@ MixingMap mixing_map(const MixingInputs& in, const ParticleView& particles) {
   m.below_grid = bm.below_grid;
   m.beside_grid = bm.beside_grid;
   m.above_surface = bm.above_surface;
+  m.above_uncounted = bm.above_uncounted;
+  m.submerged = bm.submerged;
   // One scratch lab grid: its block 0 is each of our blocks in turn, so any layout size reuses the lab's
   // C and S formula unchanged.
   lab::BlockGrid scratch;
@@ -46,7 +51,7 @@ MixingMap mixing_map(const MixingInputs& in, const ParticleView& particles) {
   scratch.rho_s[0] = in.rho_s;
   scratch.e_f[0] = in.e_f;
   for (std::size_t b = 0; b < nb; ++b) {
-    double vp = m.block_volume[b] - m.rock_volume[b];
+    double vp = m.block_volume[b] - m.rock_volume_submerged[b];
     if (vp < 0.0) {  // soft-sphere overlaps can pack a block past full; no paste then, and say so
       ++m.overfull_blocks;
       vp = 0.0;

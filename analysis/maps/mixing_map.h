@@ -3,12 +3,12 @@
 //
 // Per block (layer 1 = top, depth measured down from the final free surface of the paste):
 //   rock mass    M_wr   exact sphere-block intersection volumes x rock density (rock_in_blocks)
-//   paste volume V_p  = block volume - rock volume in the block (the whole block lies below the surface)
+//   paste volume V_p  = block volume - submerged rock volume in the block (the block lies below the surface)
 //   dried paste  M_p  = V_p x paste density x solids fraction    (what oven-drying a cut block leaves)
 //   C, S, S_raw, flag from lab::compute_block with the case's K, rho_s and e_f (eqs 3.1 and 3.8).
-// Rock above the final surface is UNMIXED: it is counted in `above_surface` and in no block, whatever its
-// x, y (a lab block cut from the hardened mixture holds no rock sticking out of the top). Rock below the
-// surface is MIXED (submerged): in a block, below the grid or beside it.
+// Rock above the final surface is UNMIXED (`above_surface`); with the layout's `top_open` (default) it still
+// counts in the layer-1 block under it, as the lab cut it (block_grid.h says why), else in no block. Rock
+// below the surface is MIXED (`submerged`): in a block, below the grid or beside it.
 //
 // Assumes the grid's blocks lie inside the container, full of paste below the surface (the default grid
 // covers the chapter-3 box exactly; a box corner at the origin).
@@ -38,14 +38,17 @@ struct MixingMap {
   BlockLayout layout;
   // Per block, flat index layout.index(i, j, k) (row-major [i][j][k], as the lab's grids).
   std::vector<double> rock_mass, rock_volume, block_volume, paste_volume, paste_dried_mass;  // kg, m3
+  std::vector<double> rock_volume_submerged;  // m3, the part of rock_volume below the surface
   std::vector<double> C, S, S_raw;     // fractions; S capped at 1, NaN where undefined
   std::vector<std::int32_t> flag;      // lab::SFlag
-  // Accounting, kg: poured = in_blocks + below_grid + beside_grid + above_surface.
-  double poured = 0.0, in_blocks = 0.0, below_grid = 0.0, beside_grid = 0.0, above_surface = 0.0;
-  double mixed() const { return in_blocks + below_grid + beside_grid; }  // submerged rock
+  // Accounting, kg: poured = in_blocks + below_grid + beside_grid + above_uncounted, and, independently of
+  // the grid, poured = submerged (mixed) + above_surface (unmixed).
+  double poured = 0.0, in_blocks = 0.0, below_grid = 0.0, beside_grid = 0.0, above_uncounted = 0.0;
+  double above_surface = 0.0, submerged = 0.0;
+  double mixed() const { return submerged; }
   double unmixed() const { return above_surface; }
-  double outside_grid() const { return below_grid + beside_grid; }
-  double conservation_error() const;  // |poured - sum of the parts| / poured
+  double outside_grid() const { return below_grid + beside_grid + above_uncounted; }
+  double conservation_error() const;  // max of both balances' |poured - sum of the parts| / poured
   int overfull_blocks = 0;            // blocks whose rock volume exceeded the block volume (DEM overlaps)
 };
 

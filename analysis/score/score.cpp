@@ -46,6 +46,7 @@ Score score_against_lab(const LabCase& lab, const std::vector<MixingMap>& maps, 
   s.case_id = lab.case_id;
   s.K = lab.K;
   s.K_source = lab.K_source;
+  s.top_open = L.top_open;
   s.no_rock_below = no_rock_below;
   for (std::size_t r = 0; r < maps.size(); ++r)
     reals[r].mae_pp = mae_of(g, [&](int b) { return maps[r].C[L.index(b / 9 + 1, b / 3 % 3 + 1, b % 3 + 1)]; }).mae;

@@ -50,6 +50,7 @@ struct Score {
   int case_id = 0;
   double K = 0.0;
   std::string K_source;
+  bool top_open = true;  // the maps' rule: rock above the surface counted in layer 1 (BlockLayout::top_open)
   std::vector<Realization> realizations;
   std::vector<BlockScore> blocks;  // lab order (lab::block_index)
   int blocks_compared = 0;

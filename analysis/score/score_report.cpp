@@ -54,6 +54,9 @@ std::string score_table(const Score& s) {
   const int n = static_cast<int>(s.realizations.size());
   std::string o = fmt::format("score: mixing case {} vs {} realization{} (seed{} {})\n", s.case_id, n,
                               n == 1 ? "" : "s", n == 1 ? "" : "s", seeds_of(s));
+  o += s.top_open ? "rock above the final surface counts in the layer-1 block under it (the lab cut the unmixed cone "
+                    "with layer 1: its blocks recovered 0.85-1.02 kg of the 1 kg poured)\n"
+                  : "rock above the final surface is in no block (--above-surface none)\n";
   o += std::isfinite(s.K) ? fmt::format("K = {:g} kg/m3 ({})\n", s.K, s.K_source)
                           : std::string("K unknown for this case: S not computed, S classes of rock blocks not compared\n");
   o += fmt::format("{:<7} {:>7} {:>8} {:>6} {:>8}   {:<16} {:<16}\n", "block", "lab C%", "model C%",
@@ -83,8 +86,8 @@ std::string score_table(const Score& s) {
   o += fmt::format("unmixed cone (C >= 90 % in M_221 and M_321): model {} ({} %, {} %), lab {} ({} %, {} %): {}\n",
                    s.model_cone ? "yes" : "no", pct(s.cone_221), pct(s.cone_321), s.lab_cone ? "yes" : "no",
                    pct(s.lab_cone_221), pct(s.lab_cone_321), verdict);
-  o += fmt::format("rock: poured {}; mixed (submerged) {}; unmixed (above the surface) {}; outside the grid (in "
-                   "the mixed mass) {}; lab recovered {:.4f} kg in its 36 blocks\n",
+  o += fmt::format("rock: poured {}; mixed (submerged) {}; unmixed (above the surface) {}; outside the grid's "
+                   "blocks {}; lab recovered {:.4f} kg in its 36 blocks\n",
                    kg(s.poured, n), kg(s.mixed, n), kg(s.unmixed, n), kg(s.outside_grid, n), s.lab_recovered_rock);
   return o;
 }
@@ -134,7 +137,8 @@ std::string score_toml(const Score& s, const std::string& software, const std::s
                    "reproduced = {}  # both have it\n\n",
                    toml_number(100 * s.cone_221), toml_number(100 * s.cone_321), toml_number(100 * s.lab_cone_221),
                    toml_number(100 * s.lab_cone_321), s.model_cone, s.lab_cone, s.model_cone && s.lab_cone);
-  o += "[rock_mass_kg]  # ensemble mean and sd; mixed = submerged (in blocks + outside the grid)\n";
+  o += "[rock_mass_kg]  # ensemble mean and sd; mixed = submerged, unmixed = above the final surface\n";
+  o += fmt::format("above_surface_counted_in_layer_1 = {}\n", s.top_open);
   auto ms = [&](const char* name, const Summary& m) {
     o += fmt::format("{} = {}\n{}_sd = {}\n", name, toml_number(m.mean), name, toml_number(m.sd));
   };

@@ -61,18 +61,38 @@ TEST_CASE("mixing map: one 2 cm rock in M_221 gives the hand-computed C and S") 
   CHECK(noK.C[b] == doctest::Approx(m.C[b]).epsilon(1e-15));
 }
 
-TEST_CASE("mixing map: rock above the final surface is unmixed and in no block") {
-  // A rock sitting on the surface of M_221 with 3/4 of its height above it, and one wholly above.
+TEST_CASE("mixing map: rock above the final surface is unmixed; it counts in layer 1 but displaces no paste") {
+  // A rock sitting on the surface of M_221 with 3/4 of its height above it, and one wholly above M_311.
   std::vector<std::array<double, 3>> pos{{0.075, 0.0825, 0.105}, {0.12, 0.03, 0.15}};
   std::vector<double> r{0.01, 0.005}, rho{2760, 2760};
-  const MixingMap m = mixing_map(thesis_inputs(3570), ParticleView{pos, r, rho});
   const double v1 = 4.0 / 3.0 * M_PI * 1e-6, v2 = 4.0 / 3.0 * M_PI * 1.25e-7;
   // Cap below the surface: height h = 0.5 cm of a 1 cm sphere, V = pi h^2 (3r - h)/3.
   const double cap = M_PI * 0.005 * 0.005 * (0.03 - 0.005) / 3.0;
-  CHECK(m.rock_mass[m.layout.index(2, 2, 1)] == doctest::Approx(2760 * cap).epsilon(1e-9));
-  CHECK(m.unmixed() == doctest::Approx(2760 * (v1 - cap + v2)).epsilon(1e-9));
-  CHECK(m.mixed() == doctest::Approx(2760 * cap).epsilon(1e-9));
-  CHECK(m.conservation_error() < 1e-12);
+  const double block = 0.05 * 0.055 * 0.03;
+  MixingInputs in = thesis_inputs(3570);
+  SUBCASE("top open (default, the lab's cut): the whole rock counts in M_221, paste = block - the cap") {
+    const MixingMap m = mixing_map(in, ParticleView{pos, r, rho});
+    const std::size_t b = m.layout.index(2, 2, 1);
+    CHECK(m.rock_mass[b] == doctest::Approx(2760 * v1).epsilon(1e-9));
+    CHECK(m.rock_mass[m.layout.index(3, 1, 1)] == doctest::Approx(2760 * v2).epsilon(1e-9));
+    CHECK(m.paste_volume[b] == doctest::Approx(block - cap).epsilon(1e-12));
+    const double paste = (block - cap) * 1843 * 0.75;
+    CHECK(m.C[b] == doctest::Approx(2760 * v1 / (2760 * v1 + paste)).epsilon(1e-12));
+    CHECK(m.unmixed() == doctest::Approx(2760 * (v1 - cap + v2)).epsilon(1e-9));
+    CHECK(m.mixed() == doctest::Approx(2760 * cap).epsilon(1e-9));
+    CHECK(m.above_uncounted == 0.0);
+    CHECK(m.conservation_error() < 1e-12);
+  }
+  SUBCASE("top closed: only the cap is in a block") {
+    in.layout.top_open = false;
+    const MixingMap m = mixing_map(in, ParticleView{pos, r, rho});
+    CHECK(m.rock_mass[m.layout.index(2, 2, 1)] == doctest::Approx(2760 * cap).epsilon(1e-9));
+    CHECK(m.rock_mass[m.layout.index(3, 1, 1)] == 0.0);
+    CHECK(m.unmixed() == doctest::Approx(2760 * (v1 - cap + v2)).epsilon(1e-9));
+    CHECK(m.above_uncounted == doctest::Approx(m.unmixed()).epsilon(1e-12));
+    CHECK(m.mixed() == doctest::Approx(2760 * cap).epsilon(1e-9));
+    CHECK(m.conservation_error() < 1e-12);
+  }
 }
 
 TEST_CASE("mixing map: mass conservation within 1e-9 relative (blocks + outside + above = poured)") {
@@ -96,11 +116,12 @@ TEST_CASE("mixing map: mass conservation within 1e-9 relative (blocks + outside 
   CHECK(m.above_surface > 0.0);
   CHECK(m.below_grid > 0.0);
   CHECK(m.beside_grid > 0.0);
-  CHECK(std::abs(blocks + m.below_grid + m.beside_grid + m.above_surface - poured) / poured < 1e-9);
+  CHECK(std::abs(blocks + m.below_grid + m.beside_grid + m.above_uncounted - poured) / poured < 1e-9);
+  CHECK(std::abs(m.mixed() + m.unmixed() - poured) / poured < 1e-9);
   CHECK(m.conservation_error() < 1e-9);
-  // Paste + rock volume fill each block (none overfull at this density of rock).
+  // Paste + submerged rock volume fill each block (none overfull at this density of rock).
   for (std::size_t b = 0; b < m.C.size(); ++b)
-    CHECK(m.paste_volume[b] + m.rock_volume[b] == doctest::Approx(m.block_volume[b]).epsilon(1e-12));
+    CHECK(m.paste_volume[b] + m.rock_volume_submerged[b] == doctest::Approx(m.block_volume[b]).epsilon(1e-12));
 }
 
 TEST_CASE("mixing map: a non-default layout (2 x 2 blocks, 4 layers) uses the same C formula") {
