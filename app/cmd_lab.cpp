@@ -12,6 +12,7 @@
 #include "app/commands.h"
 #include "base/csv.h"
 #include "base/error.h"
+#include "base/params.h"
 #include "base/psd.h"
 #include "lab/ingest/block_cut.h"
 #include "lab/ingest/block_cut_corrections.h"
@@ -241,6 +242,39 @@ void add_reduce(CLI::App& lab) {
   });
 }
 
+// `pastemix lab param parameters.toml paste.yield_stress` prints one value of the parameter store, so a script
+// (scripts/main.sh) can hand a measured value to a scene (`--set fluid.0.yield_stress=...`) without parsing TOML.
+void add_param(CLI::App& lab) {
+  auto* cmd = lab.add_subcommand("param", "Print one value (or --field) of a parameters.toml written by `lab reduce`");
+  struct Opts {
+    std::string file, key, field = "value";
+  };
+  auto o = std::make_shared<Opts>();
+  cmd->add_option("FILE", o->file, "parameters.toml")->required();
+  cmd->add_option("KEY", o->key, "dotted parameter key, e.g. paste.yield_stress")->required();
+  cmd->add_option("--field", o->field, "field of the parameter table: value, sd, n, unit, provenance, ...")
+      ->capture_default_str();
+  cmd->callback([o] {
+    const Params root = Params::parse_file(o->file);
+    Params t = root;
+    std::size_t start = 0;
+    while (start <= o->key.size()) {  // walk the dotted path: each segment names a table
+      const std::size_t dot = o->key.find('.', start);
+      const std::string seg = o->key.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
+      if (seg.empty()) throw InputError(o->file, 0, o->key, "empty segment in the dotted key");
+      t = t.table(seg);
+      if (dot == std::string::npos) break;
+      start = dot + 1;
+    }
+    // Not finish()ed: the file holds every parameter; only one is read.
+    if (o->field == "value" || o->field == "sd" || o->field == "n") {
+      fmt::print("{}\n", t.number(o->field));  // shortest round-trip form: full precision for --set
+    } else {
+      fmt::print("{}\n", t.string(o->field));
+    }
+  });
+}
+
 }  // namespace
 
 void register_lab_commands(CLI::App& app) {
@@ -254,6 +288,7 @@ void register_lab_commands(CLI::App& app) {
   add_sieve(*lab);
   add_block_cut(*lab);
   add_reduce(*lab);
+  add_param(*lab);
   register_lab_drag_commands(*lab);
 }
 

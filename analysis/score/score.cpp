@@ -111,6 +111,30 @@ Score score_against_lab(const LabCase& lab, const std::vector<MixingMap>& maps, 
   s.unmixed = e.unmixed;
   s.outside_grid = e.outside_grid;
   for (double x : g.M_wr) s.lab_recovered_rock += x;
+  // Rock per layer and the deep share (layers 2..3 over all blocks), lab and per realization.
+  s.lab_layer_rock.assign(lab::kLayers, 0.0);
+  for (int i = 1; i <= lab::kBlocksI; ++i)
+    for (int j = 1; j <= lab::kBlocksJ; ++j)
+      for (int k = 1; k <= lab::kLayers; ++k)
+        s.lab_layer_rock[static_cast<std::size_t>(k - 1)] += g.M_wr[static_cast<std::size_t>(lab::block_index(i, j, k))];
+  auto deep = [](const std::vector<double>& layer) {
+    double all = 0.0;
+    for (double x : layer) all += x;
+    return all > 0.0 ? (all - layer.front()) / all : 0.0;
+  };
+  s.lab_deep_share = deep(s.lab_layer_rock);
+  std::vector<std::vector<double>> per_layer(lab::kLayers);
+  std::vector<double> shares;
+  for (const auto& mp : maps) {
+    std::vector<double> layer(lab::kLayers, 0.0);
+    for (int i = 1; i <= lab::kBlocksI; ++i)
+      for (int j = 1; j <= lab::kBlocksJ; ++j)
+        for (int k = 1; k <= lab::kLayers; ++k) layer[static_cast<std::size_t>(k - 1)] += mp.rock_mass[L.index(i, j, k)];
+    for (int k = 0; k < lab::kLayers; ++k) per_layer[static_cast<std::size_t>(k)].push_back(layer[static_cast<std::size_t>(k)]);
+    shares.push_back(deep(layer));
+  }
+  for (const auto& v : per_layer) s.model_layer_rock.push_back(summarize(v));
+  s.model_deep_share = summarize(shares);
   return s;
 }
 

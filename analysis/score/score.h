@@ -9,7 +9,9 @@
 //     e.g. case 1 without K, are not compared);
 //   the unmixed-cone check: C >= 90 % in M_221 and M_321 (the crater of unmixed rock under the funnel), for the
 //     model and for the lab (cases 2-3 have one, case 1 does not): reproduced when both have it;
-//   mixed (submerged) and unmixed (above the surface) rock masses, with the lab's recovered rock mass.
+//   mixed (submerged) and unmixed (above the surface) rock masses, with the lab's recovered rock mass;
+//   rock mass per layer (sum of its 12 blocks) and the deep share = rock in layers 2..3 / rock in all blocks,
+//     for lab and model: the penetration measure the trends across cases are compared on.
 #pragma once
 
 #include <string>
@@ -64,6 +66,10 @@ struct Score {
   bool model_cone = false, lab_cone = false;  // C >= 90 % in both M_221 and M_321
   Summary poured, mixed, unmixed, outside_grid;  // kg
   double lab_recovered_rock = 0.0;               // kg, sum of the lab's M_wr over the 36 blocks
+  std::vector<double> lab_layer_rock;            // kg per layer k = 1..3
+  std::vector<Summary> model_layer_rock;         // kg per layer, over realizations
+  double lab_deep_share = 0.0;                   // rock in layers 2..3 / rock in the 36 blocks
+  Summary model_deep_share;                      // the same per realization
 };
 
 // `maps[r]` belongs to `realizations[r]`. The maps must be on a 4 x 3 x 3 layout (std::invalid_argument).

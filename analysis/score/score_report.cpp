@@ -89,6 +89,14 @@ std::string score_table(const Score& s) {
   o += fmt::format("rock: poured {}; mixed (submerged) {}; unmixed (above the surface) {}; outside the grid's "
                    "blocks {}; lab recovered {:.4f} kg in its 36 blocks\n",
                    kg(s.poured, n), kg(s.mixed, n), kg(s.unmixed, n), kg(s.outside_grid, n), s.lab_recovered_rock);
+  o += "rock per layer (kg, sum of 12 blocks):";
+  for (std::size_t k = 0; k < s.lab_layer_rock.size(); ++k)
+    o += fmt::format("  layer {}: lab {:.4f}, model {}", k + 1, s.lab_layer_rock[k],
+                     n > 1 ? fmt::format("{:.4f} +- {:.4f}", s.model_layer_rock[k].mean, s.model_layer_rock[k].sd)
+                           : fmt::format("{:.4f}", s.model_layer_rock[k].mean));
+  o += fmt::format("\ndeep share (rock in layers 2-3 / rock in all blocks): lab {} %, model {} %{}\n",
+                   pct(s.lab_deep_share), pct(s.model_deep_share.mean),
+                   n > 1 ? fmt::format(" +- {}", pct(s.model_deep_share.sd)) : std::string());
   return o;
 }
 
@@ -147,6 +155,19 @@ std::string score_toml(const Score& s, const std::string& software, const std::s
   ms("unmixed", s.unmixed);
   ms("outside_grid", s.outside_grid);
   o += fmt::format("lab_recovered = {}\n", toml_number(s.lab_recovered_rock));
+  {
+    std::vector<std::string> lab, mean, sd;
+    for (std::size_t k = 0; k < s.lab_layer_rock.size(); ++k) {
+      lab.push_back(toml_number(s.lab_layer_rock[k]));
+      mean.push_back(toml_number(s.model_layer_rock[k].mean));
+      sd.push_back(toml_number(s.model_layer_rock[k].sd));
+    }
+    o += fmt::format("lab_layer = [{}]\nmodel_layer = [{}]\nmodel_layer_sd = [{}]\n", fmt::join(lab, ", "),
+                     fmt::join(mean, ", "), fmt::join(sd, ", "));
+    o += fmt::format("lab_deep_share = {}\nmodel_deep_share = {}\nmodel_deep_share_sd = {}\n",
+                     toml_number(s.lab_deep_share), toml_number(s.model_deep_share.mean),
+                     toml_number(s.model_deep_share.sd));
+  }
   for (const auto& r : s.realizations) {
     o += "\n[[realization]]\n";
     o += fmt::format("file = {}\nseed = {}\nscene_hash = {}\nsnapshot = {}\ntime_s = {}\nC_mean_abs_error_pp = {}\n",

@@ -79,6 +79,16 @@ TEST_CASE("reduce CLI: writes parameters.toml (valid TOML), lab.h5 (4x3x3 grids)
   CHECK(std::isnan(h5.attribute_double("/block_cut/case_1", "K")));
   for (int c = 1; c <= 5; ++c) CHECK(fs::file_size(out / fmt::format("mixing_case_{}.png", c)) > 10000);
   for (const auto& e : fs::directory_iterator(out)) CHECK(e.path().string().find(".partial") == std::string::npos);
+  // `lab param` hands one stored value to a script (scripts/main.sh), at full precision.
+  const std::string file = " '" + (out / "parameters.toml").string() + "' ";
+  auto v = test::run_pastemix("lab param" + file + "paste.yield_stress");
+  CHECK(v.exit_code == 0);
+  CHECK(std::stod(v.output) == ys.number("value"));
+  auto unit = test::run_pastemix("lab param" + file + "paste.density --field unit");
+  CHECK(unit.output == "kg/m3\n");
+  auto missing = test::run_pastemix("lab param" + file + "paste.no_such_thing");
+  CHECK(missing.exit_code == 2);
+  CHECK(missing.output.find("no_such_thing") != std::string::npos);
   fs::remove_all(out);
 }
 

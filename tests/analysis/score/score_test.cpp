@@ -114,3 +114,29 @@ TEST_CASE("score: a grain below the lab's 0.1 g weighing resolution counts as no
   CHECK(strict.blocks[b].model_class == SClass::capped);
   CHECK(strict.classes_agree == 35);
 }
+
+TEST_CASE("score: rock per layer and the deep share, lab and model") {
+  ScratchDir d("score_layers");
+  write_result(d / "r.h5", synthetic_result());
+  const MixingMap m = map_of(d / "r.h5", 3570);
+  LabSpec spec = lab_equal_to(m, 0.0);
+  // Lab: put 0.3 kg in M_112 (layer 2) and 0.1 kg in M_113 (layer 3) on top of the model's layer-1 rock.
+  spec.M_wr[static_cast<std::size_t>(pastemix::lab::block_index(1, 1, 2))] = 0.3;
+  spec.M_wr[static_cast<std::size_t>(pastemix::lab::block_index(1, 1, 3))] = 0.1;
+  write_lab(d / "lab.h5", spec);
+  const LabCase lab = read_lab_case(d / "lab.h5", 3, true);
+  const Score s = score_against_lab(lab, {m, m}, {Realization{}, Realization{}});
+  REQUIRE(s.lab_layer_rock.size() == 3);
+  REQUIRE(s.model_layer_rock.size() == 3);
+  // All the synthetic rock in blocks is in layer 1 (the third rock, above the surface, counts there too).
+  CHECK(s.model_layer_rock[0].mean == doctest::Approx(m.in_blocks).epsilon(1e-12));
+  CHECK(s.model_layer_rock[0].sd == 0.0);
+  CHECK(s.model_layer_rock[1].mean == 0.0);
+  CHECK(s.model_deep_share.mean == 0.0);
+  CHECK(s.lab_layer_rock[0] == doctest::Approx(m.in_blocks).epsilon(1e-12));
+  CHECK(s.lab_layer_rock[1] == doctest::Approx(0.3).epsilon(1e-12));
+  CHECK(s.lab_layer_rock[2] == doctest::Approx(0.1).epsilon(1e-12));
+  CHECK(s.lab_deep_share == doctest::Approx(0.4 / (0.4 + m.in_blocks)).epsilon(1e-12));
+  CHECK(score_toml(s, "sw", "cmd", "t", "lab.h5").find("lab_deep_share = ") != std::string::npos);
+  CHECK(score_table(s).find("deep share (rock in layers 2-3 / rock in all blocks): lab ") != std::string::npos);
+}
