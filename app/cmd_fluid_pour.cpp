@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <filesystem>
 #include <memory>
 
@@ -86,17 +87,22 @@ void register_pour(CLI::App* val) {
                p.balls, 1e3 * p.ball_d, p.rho_ball, 100 * p.top_d, 100 * p.exit_d, 100 * p.cone_h, 100 * p.tube,
                p.release, 100 * p.fall, 100 * p.box_x, 100 * p.box_y, 100 * p.paste_depth, p.restitution, p.friction,
                paste.ball_from, p.dt_rayleigh * tr, p.dt_rayleigh, tr);
-    fmt::print("{:>5} {:>9} {:>9} {:>10} {:>9} {:>9} {:>9} {:>8} {:>7} {:>7}\n", "seed", "Z min cm", "Z max cm",
-               "suspended", "in funnel", "1st out s", "last out", "t end s", "ids", "wall s");
+    fmt::print("{:>5} {:>9} {:>9} {:>10} {:>9} {:>9} {:>9} {:>8} {:>7} {:>7} {:>7}\n", "seed", "Z min cm", "Z max cm",
+               "suspended", "in funnel", "1st out s", "last out", "t end s", "ids", "wall s", "cpu s");
     double lo = 1e300, hi = -1e300;
     long total = 0, suspended = 0, in_band = 0, stuck = 0;
     bool ids_ok = true;
     std::string rows = "seed,ball,x_m,y_m,z_m,in_funnel,at_rest\n";
+    // Wall time, and the process's CPU time (one thread: what the run costs on an idle core; the wall time
+    // on a shared machine also counts the time other processes held the core).
     const auto t0 = std::chrono::steady_clock::now();
+    const std::clock_t c0 = std::clock();
     for (int k = 1; k <= o->seeds; ++k) {
       const auto t1 = std::chrono::steady_clock::now();
+      const std::clock_t c1 = std::clock();
       const auto b = model::fluid::ball_pour(p, static_cast<std::uint64_t>(k));
       const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+      const double cpu = static_cast<double>(std::clock() - c1) / CLOCKS_PER_SEC;
       const double top = p.paste_depth + p.fall;
       for (std::size_t a = 0; a < b.z.size(); ++a) {
         const bool funnel = b.z[a] + 0.5 * p.ball_d > top;
@@ -107,16 +113,19 @@ void register_pour(CLI::App* val) {
       total += static_cast<long>(b.z.size());
       suspended += b.at_rest, stuck += b.in_funnel, ids_ok = ids_ok && b.ids_ok;
       if (b.in_funnel < p.balls) lo = std::min(lo, b.z_min), hi = std::max(hi, b.z_max);
-      fmt::print("{:>5} {:>9.2f} {:>9.2f} {:>10} {:>9} {:>9.3f} {:>9.3f} {:>8.3f} {:>7} {:>7.1f}\n", k, 100 * b.z_min,
+      fmt::print("{:>5} {:>9.2f} {:>9.2f} {:>10} {:>9} {:>9.3f} {:>9.3f} {:>8.3f} {:>7} {:>7.1f} {:>7.1f}\n", k, 100 * b.z_min,
                  100 * b.z_max, b.at_rest, b.in_funnel, b.first_out, b.last_out, b.t_end, b.ids_ok ? "ok" : "LOST",
-                 wall);
+                 wall, cpu);
       std::fflush(stdout);
     }
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double cpu = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
+    const double n = static_cast<double>(total);
     fmt::print("all {} seeds: Z = {:.2f}-{:.2f} cm (lab 8.5-13.5); suspended at rest {}/{} ({:.1f} %); inside "
-               "8.5-13.5 cm {}/{} ({:.1f} %); left in the funnel {}; ids {}; {:.1f} s wall ({:.1f} s per seed)\n",
-               o->seeds, 100 * lo, 100 * hi, suspended, total, 100.0 * suspended / total, in_band, total,
-               100.0 * in_band / total, stuck, ids_ok ? "conserved" : "NOT conserved", wall, wall / o->seeds);
+               "8.5-13.5 cm {}/{} ({:.1f} %); left in the funnel {}; ids {}; {:.1f} s wall, {:.1f} s CPU ({:.1f} s CPU per seed)\n",
+               o->seeds, 100 * lo, 100 * hi, suspended, total, 100.0 * static_cast<double>(suspended) / n, in_band, total,
+               100.0 * static_cast<double>(in_band) / n, stuck, ids_ok ? "conserved" : "NOT conserved", wall, cpu,
+               cpu / o->seeds);
     namespace fs = std::filesystem;
     const fs::path dir = o->out;
     fs::create_directories(dir);

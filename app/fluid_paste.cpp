@@ -50,8 +50,9 @@ Paste resolve_paste(const PasteOpts& o, bool need_eta) {
   p.rho = pick(o.rho, lab.density, "paste.density", &p.rho_from);
   if (have_file) {
     p.curve = lab.curve;
-    p.curve_from = o.curve.empty() ? fmt::format("{} drag_curve.chosen", o.params)
-                                   : fmt::format("--curve (coefficients from {})", o.params);
+    p.curve_from = o.curve.empty()                 ? fmt::format("{} drag_curve.chosen", o.params)
+                   : p.curve.coefficients.empty() ? std::string("--curve")
+                                                  : fmt::format("--curve, coefficients from {}", o.params);
   } else {
     p.curve = {*fixed, {}};
     p.curve_from = "--curve";

@@ -307,6 +307,24 @@ TEST_CASE("fluid engine: 12 balls poured from the funnel: none left in it, all a
   }
 }
 
+TEST_CASE("fluid CLI: validate ball-pour writes the positions and the maps, all balls out of the funnel") {
+  const std::string fixture = (source_dir() / "tests/model/fluid/data/parameters.toml").string();
+  const auto dir = std::filesystem::temp_directory_path() / "pastemix_ball_pour_test";
+  std::filesystem::remove_all(dir);
+  const auto r = pastemix::test::run_pastemix("validate ball-pour --seeds 1 --balls 6 --params " + fixture + " --out " +
+                                              dir.string());
+  INFO(r.output);
+  CHECK(r.exit_code == 0);
+  CHECK(r.output.find("suspended at rest 6/6 (100.0 %)") != std::string::npos);
+  CHECK(r.output.find("left in the funnel 0; ids conserved") != std::string::npos);
+  CHECK(std::filesystem::exists(dir / "ball_pour.csv"));
+  if (r.output.find("no PNG maps written") == std::string::npos) {  // matplotlib present
+    CHECK(std::filesystem::exists(dir / "ball_pour_maps.png"));
+    CHECK(std::filesystem::exists(dir / "ball_pour_z.png"));
+  }
+  std::filesystem::remove_all(dir);
+}
+
 TEST_CASE("fluid switches: buoyancy, yield_term, partial_submergence and surface_rise each change what they say") {
   // buoyancy = false: water settling goes to rho_p g d^2 / (18 eta) (not (rho_p - rho_f) ...).
   SphereRun w;
