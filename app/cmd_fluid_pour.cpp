@@ -90,9 +90,9 @@ void register_pour(CLI::App* val) {
     fmt::print("{:>5} {:>9} {:>9} {:>10} {:>9} {:>9} {:>9} {:>8} {:>7} {:>7} {:>7}\n", "seed", "Z min cm", "Z max cm",
                "suspended", "in funnel", "1st out s", "last out", "t end s", "ids", "wall s", "cpu s");
     double lo = 1e300, hi = -1e300;
-    long total = 0, suspended = 0, in_band = 0, stuck = 0;
+    long total = 0, suspended = 0, in_band = 0, stuck = 0, floor = 0;
     bool ids_ok = true;
-    std::string rows = "seed,ball,x_m,y_m,z_m,in_funnel,at_rest\n";
+    std::string rows = "seed,ball,x_m,y_m,z_m,in_funnel,below_surface\n";
     // Wall time, and the process's CPU time (one thread: what the run costs on an idle core; the wall time
     // on a shared machine also counts the time other processes held the core).
     const auto t0 = std::chrono::steady_clock::now();
@@ -111,7 +111,7 @@ void register_pour(CLI::App* val) {
         in_band += !funnel && b.z[a] >= 0.085 && b.z[a] <= 0.135;
       }
       total += static_cast<long>(b.z.size());
-      suspended += b.at_rest, stuck += b.in_funnel, ids_ok = ids_ok && b.ids_ok;
+      suspended += b.at_rest, stuck += b.in_funnel, floor += b.on_floor, ids_ok = ids_ok && b.ids_ok;
       if (b.in_funnel < p.balls) lo = std::min(lo, b.z_min), hi = std::max(hi, b.z_max);
       fmt::print("{:>5} {:>9.2f} {:>9.2f} {:>10} {:>9} {:>9.3f} {:>9.3f} {:>8.3f} {:>7} {:>7.1f} {:>7.1f}\n", k, 100 * b.z_min,
                  100 * b.z_max, b.at_rest, b.in_funnel, b.first_out, b.last_out, b.t_end, b.ids_ok ? "ok" : "LOST",
@@ -122,9 +122,9 @@ void register_pour(CLI::App* val) {
     const double cpu = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
     const double n = static_cast<double>(total);
     fmt::print("all {} seeds: Z = {:.2f}-{:.2f} cm (lab 8.5-13.5); suspended at rest {}/{} ({:.1f} %); inside "
-               "8.5-13.5 cm {}/{} ({:.1f} %); left in the funnel {}; ids {}; {:.1f} s wall, {:.1f} s CPU ({:.1f} s CPU per seed)\n",
+               "8.5-13.5 cm {}/{} ({:.1f} %); on the floor {}; left in the funnel {}; ids {}; {:.1f} s wall, {:.1f} s CPU ({:.1f} s CPU per seed)\n",
                o->seeds, 100 * lo, 100 * hi, suspended, total, 100.0 * static_cast<double>(suspended) / n, in_band, total,
-               100.0 * static_cast<double>(in_band) / n, stuck, ids_ok ? "conserved" : "NOT conserved", wall, cpu,
+               100.0 * static_cast<double>(in_band) / n, floor, stuck, ids_ok ? "conserved" : "NOT conserved", wall, cpu,
                cpu / o->seeds);
     namespace fs = std::filesystem;
     const fs::path dir = o->out;

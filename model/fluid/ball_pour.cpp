@@ -145,7 +145,9 @@ BallPourResult ball_pour(const FunnelPour& p, std::uint64_t seed) {
     b.id.push_back(pt.id[a]);
     const bool inside = w.fluid()->inside(static_cast<long>(a));
     b.in_paste += inside;
-    b.at_rest += inside && norm2(pt.v[a]) == 0.0;
+    const bool floor = pt.x[a].z - r < 1e-4;
+    b.on_floor += floor;
+    b.at_rest += inside && !floor && norm2(pt.v[a]) == 0.0;
     if (pt.x[a].z + r > g.z_tube) {
       ++b.in_funnel;  // still in (or partly in) the funnel
       continue;

@@ -52,7 +52,8 @@ struct BallPourResult {
   std::vector<double> x, y, z;  // m, final centres (frame corner at the origin, z above the frame bottom)
   std::vector<std::int64_t> id; // particle ids at the end (must be 0..balls-1)
   double z_min = 0.0, z_max = 0.0;  // m, over the balls that left the funnel
-  int at_rest = 0;        // balls at exact rest (v == 0) inside the paste
+  int at_rest = 0;        // balls at exact rest (v == 0) inside the paste, not on the floor: suspended
+  int on_floor = 0;       // balls touching the frame floor (within 0.1 mm): not suspended
   int in_funnel = 0;      // balls still above the exit-tube bottom at the end (jammed or not yet out)
   int in_paste = 0;       // balls inside the paste region (submerged volume > 0)
   double surface = 0.0;   // m, final free surface

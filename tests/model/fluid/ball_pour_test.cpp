@@ -26,6 +26,7 @@ TEST_CASE("fluid engine: 12 balls poured from the funnel: none left in it, all a
                  << b.in_funnel << ", t " << b.t_end);
     CHECK(b.ids_ok);
     CHECK(b.in_funnel == 0);
+    CHECK(b.on_floor == 0);
     CHECK(b.at_rest == 12);
     CHECK(b.t_end < p.end_time);  // stopped because every ball rests
     CHECK(b.z_min > 0.085);
@@ -42,7 +43,7 @@ TEST_CASE("fluid CLI: validate ball-pour writes the positions and the maps, all 
   INFO(r.output);
   CHECK(r.exit_code == 0);
   CHECK(r.output.find("suspended at rest 6/6 (100.0 %)") != std::string::npos);
-  CHECK(r.output.find("left in the funnel 0; ids conserved") != std::string::npos);
+  CHECK(r.output.find("on the floor 0; left in the funnel 0; ids conserved") != std::string::npos);
   CHECK(std::filesystem::exists(dir / "ball_pour.csv"));
   if (r.output.find("no PNG maps written") == std::string::npos) {  // matplotlib present
     CHECK(std::filesystem::exists(dir / "ball_pour_maps.png"));
