@@ -4,14 +4,18 @@
 //   pastemix validate settling DATASET --curve NAME [--params parameters.toml] [--rows N] [--dt S]
 //                                                                 121 Valentik & Whitmore spheres, DEM vs lab
 //   pastemix validate suspension                                 rest above / sinking below the yield number
-//   pastemix validate steel-balls [--eta 0.7] [--tau 138]        settling distance vs falling height
-//   pastemix calibrate viscosity --ball 12.6 --height 255 --distance D   eta_B from one ball (mm in, Pa.s out)
+//   pastemix validate steel-balls [PASTE] [--no-wall] [--offset MM]   settling distance vs falling height
+//   pastemix validate ball-pour [PASTE] [--seeds 15] [--out DIR]  68 balls from the funnel (app/cmd_fluid_pour.cpp)
+//   pastemix calibrate viscosity --ball 12.6 --height 255 --distance D [PASTE]   eta_B from one ball
+// PASTE = [--params out/lab/parameters.toml] [--tau-y PA] [--rho-paste KG_M3] [--eta PA_S] [--curve NAME]
+// (app/fluid_paste.h: values from the lab parameter store, overridable).
 #include <cmath>
 #include <memory>
 
 #include <fmt/format.h>
 
 #include "app/commands.h"
+#include "app/fluid_paste.h"
 #include "base/error.h"
 #include "base/staged_output.h"
 #include "lab/drag/settling.h"
@@ -34,7 +38,6 @@ drag::DragCurve curve_option(const std::string& name, const std::string& params)
   return read_chosen_curve(params, name);
 }
 
-void register_pour(CLI::App* val);
 
 void register_validate(CLI::App& app) {
   CLI::App* val = app.add_subcommand("validate", "fluid validations through the engine");
@@ -120,19 +123,27 @@ void register_validate(CLI::App& app) {
   });
 
   struct BallOpts {
-    double eta = 0.7, tau = 138.0, dt = 2e-5;
+    double dt = 2e-5, offset = 0.0;
+    bool no_wall = false;
+    PasteOpts paste;
   };
   auto bo = std::make_shared<BallOpts>();
   CLI::App* balls = val->add_subcommand("steel-balls", "Table 4.4: settling distance vs falling height");
-  balls->add_option("--eta", bo->eta, "paste plastic viscosity (Pa.s), default 0.7 (thesis)");
-  balls->add_option("--tau", bo->tau, "paste yield stress (Pa), default 138 (slump reduction)");
-  balls->add_option("--dt", bo->dt, "time step (s)");
+  add_paste_options(balls, bo->paste);
+  balls->add_option("--dt", bo->dt, "time step (s), default 2e-5");
+  balls->add_flag("--no-wall", bo->no_wall, "leave out the mould's side wall (cylinder 75 mm)");
+  balls->add_option("--offset", bo->offset, "release point's distance from the mould axis (mm), default 0");
   balls->callback([bo] {
-    SteelBallPaste p;
-    p.tau_y = bo->tau, p.dt = bo->dt;
-    fmt::print("steel balls (8135 kg/m3) in paste: rho 1843 kg/m3, tau_y {} Pa, eta_B {} Pa.s, curve 4.19, mould "
-               "75 x 150 mm, dt {} s\nsettling distance = initial paste surface to the ball's bottom at rest (mm)\n",
-               p.tau_y, bo->eta, p.dt);
+    const Paste paste = resolve_paste(bo->paste);
+    SteelBallPaste p = steel_ball_paste(paste);
+    p.dt = bo->dt, p.mould_wall = !bo->no_wall, p.offset = 1e-3 * bo->offset;
+    if (!(p.offset >= 0.0 && p.offset + 0.008 < 0.5 * std::sqrt(M_PI / 4.0) * p.mould_diameter))
+      throw InputError("--offset", 0, "offset", "must leave the 16 mm ball inside the mould's fluid box (mm)");
+    print_paste(paste);
+    fmt::print("steel balls ({} kg/m3), mould {} x {} mm{}, release {} mm off the axis, dt {} s\nsettling distance = "
+               "initial paste surface to the ball's bottom at rest (mm)\n",
+               p.rho_ball, 1e3 * p.mould_diameter, 1e3 * p.mould_height,
+               p.mould_wall ? " with its side wall" : " WITHOUT side wall", bo->offset, p.dt);
     const std::vector<double> heights{0.0, 0.105, 0.150, 0.255};
     fmt::print("{:>10}", "ball (mm)");
     for (double h : heights) fmt::print(" {:>9}", fmt::format("H={:.0f}", 1e3 * h));
@@ -140,7 +151,7 @@ void register_validate(CLI::App& app) {
     for (double d : {0.008, 0.0126, 0.016}) {
       fmt::print("{:>10.1f}", 1e3 * d);
       for (double h : heights) {
-        const BallDrop b = steel_ball_drop(p, d, h, bo->eta);
+        const BallDrop b = steel_ball_drop(p, d, h, paste.eta);
         fmt::print(" {:>9}", fmt::format("{:.2f}{}", 1e3 * b.distance, b.reached_bottom ? "*" : ""));
       }
       fmt::print("\n");
@@ -148,52 +159,11 @@ void register_validate(CLI::App& app) {
   });
 }
 
-void register_pour(CLI::App* val) {
-  struct Opts {
-    int seeds = 3, balls = 68;
-    double eta = 0.7, tau = 138.0, fall = 0.15, end = 0.8, E = 2e11;
-    std::string csv;
-  };
-  auto o = std::make_shared<Opts>();
-  CLI::App* pour = val->add_subcommand("ball-pour", "68 balls of 12.6 mm, 15 cm fall into the paste: final Z range");
-  pour->add_option("--seeds", o->seeds, "seeded runs (default 3)");
-  pour->add_option("--balls", o->balls, "balls (default 68)");
-  pour->add_option("--eta", o->eta, "plastic viscosity (Pa.s), default 0.7");
-  pour->add_option("--tau", o->tau, "yield stress (Pa), default 138");
-  pour->add_option("--end", o->end, "simulated time (s), default 0.8");
-  pour->add_option("--modulus", o->E, "Young's modulus of balls and frame (Pa), default 2e11");
-  pour->add_option("--csv", o->csv, "write seed,ball,x_m,y_m,z_m of every final position (for the maps)");
-  pour->callback([o] {
-    SteelBallPaste p;
-    p.tau_y = o->tau;
-    fmt::print("{} balls, 12.6 mm, 8135 kg/m3, fall {} m into paste (tau_y {} Pa, eta_B {} Pa.s, 4.19), box 20 x "
-               "16.5 cm, paste 15 cm; lab: all suspended, Z = 8.5-13.5 cm\n",
-               o->balls, o->fall, p.tau_y, o->eta);
-    fmt::print("{:>5} {:>10} {:>10} {:>8} {:>12}\n", "seed", "Z min cm", "Z max cm", "at rest", "surface cm");
-    double lo = 1e300, hi = -1e300;
-    std::string rows = "seed,ball,x_m,y_m,z_m\n";
-    for (int k = 1; k <= o->seeds; ++k) {
-      const BallPour b = ball_pour(p, o->eta, static_cast<std::uint64_t>(k), o->fall, o->end, o->balls, o->E);
-      for (std::size_t a = 0; a < b.z.size(); ++a)
-        rows += fmt::format("{},{},{:.6f},{:.6f},{:.6f}\n", k, a, b.x[a], b.y[a], b.z[a]);
-      lo = std::min(lo, b.z_min), hi = std::max(hi, b.z_max);
-      fmt::print("{:>5} {:>10.2f} {:>10.2f} {:>8} {:>12.3f}\n", k, 100 * b.z_min, 100 * b.z_max, b.at_rest,
-                 100 * b.surface);
-    }
-    fmt::print("all seeds: Z = {:.2f}-{:.2f} cm (centres above the box bottom)\n", 100 * lo, 100 * hi);
-    if (!o->csv.empty()) {
-      StagedOutput staged;
-      staged.write_text(o->csv, rows);
-      staged.commit();
-      fmt::print("wrote {}\n", o->csv);
-    }
-  });
-}
-
 void register_calibrate(CLI::App& app) {
   CLI::App* cal = group_subcommand(app, "calibrate", "calibrate an unmeasurable parameter against lab tests");
   struct Opts {
-    double ball = 12.6, height = 255.0, distance = 0.0, tau = 138.0, dt = 2e-5;
+    double ball = 12.6, height = 255.0, distance = 0.0, dt = 2e-5;
+    PasteOpts paste;
   };
   auto o = std::make_shared<Opts>();
   CLI::App* visc = cal->add_subcommand("viscosity", "paste plastic viscosity from a steel ball's settling distance");
@@ -201,18 +171,20 @@ void register_calibrate(CLI::App& app) {
   visc->add_option("--height", o->height, "falling height of the ball's bottom above the paste (mm), default 255");
   visc->add_option("--distance", o->distance, "measured settling distance: paste surface to ball bottom (mm)")
       ->required();
-  visc->add_option("--tau", o->tau, "paste yield stress (Pa), default 138");
+  add_paste_options(visc, o->paste, /*with_eta=*/false);
   visc->add_option("--dt", o->dt, "time step (s)");
   visc->callback([o] {
     if (!(o->ball > 0.0)) throw InputError("--ball", 0, "ball", "must be positive (mm)");
     if (!(o->height >= 0.0)) throw InputError("--height", 0, "height", "must be non-negative (mm)");
     if (!(o->distance > 0.0)) throw InputError("--distance", 0, "distance", "must be positive (mm)");
-    SteelBallPaste p;
-    p.tau_y = o->tau, p.dt = o->dt;
+    const Paste paste = resolve_paste(o->paste, /*need_eta=*/false);
+    SteelBallPaste p = steel_ball_paste(paste);
+    p.dt = o->dt;
+    print_paste(paste);
     const Calibration c = calibrate_viscosity(p, 1e-3 * o->ball, 1e-3 * o->height, 1e-3 * o->distance);
-    fmt::print("eta_B = {:.6g} Pa.s (distance {:.4f} mm at that viscosity; {} engine runs; tau_y {} Pa, rho 1843, "
-               "ball {} mm, height {} mm)\n",
-               c.eta, 1e3 * c.distance, c.runs, p.tau_y, o->ball, o->height);
+    fmt::print("eta_B = {:.6g} Pa.s (distance {:.4f} mm at that viscosity; {} engine runs; ball {} mm, height {} mm, "
+               "mould wall on)\n",
+               c.eta, 1e3 * c.distance, c.runs, o->ball, o->height);
   });
 }
 

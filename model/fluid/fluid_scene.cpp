@@ -66,6 +66,33 @@ drag::DragCurve read_chosen_curve(const std::string& parameters_toml, const std:
   return c;
 }
 
+LabPaste read_lab_paste(const std::string& parameters_toml, const std::string& curve_name) {
+  const Params root = Params::parse_file(parameters_toml);
+  auto value = [&](const char* group, const char* key) -> std::optional<double> {
+    const auto g = root.optional_table(group);
+    if (!g) return std::nullopt;
+    const auto t = g->optional_table(key);
+    if (!t) return std::nullopt;
+    return t->number("value", Range::positive);
+  };
+  auto required = [&](const char* group, const char* key) {
+    const auto v = value(group, key);
+    if (!v)
+      throw InputError(parameters_toml, 0, fmt::format("{}.{}", group, key),
+                       "missing (run `pastemix lab reduce DATASET --out DIR` to produce it, or pass the value)");
+    return *v;
+  };
+  LabPaste p;
+  p.tau_y = required("paste", "yield_stress");
+  p.density = required("paste", "density");
+  p.eta_B = value("paste", "plastic_viscosity");
+  p.ball_restitution = value("steel_ball", "restitution");
+  p.ball_friction = value("steel_ball", "static_friction");
+  p.ball_density = value("steel_ball", "density");
+  p.curve = read_chosen_curve(parameters_toml, curve_name);
+  return p;
+}
+
 std::vector<FluidRegion> read_fluid_regions(const Params& root, const std::string& scene_path) {
   std::vector<FluidRegion> out;
   for (const Params& f : root.tables("fluid")) {

@@ -20,6 +20,7 @@
 // bottom, a known curve with admissible coefficients (exactly one of curve / curve_from).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,5 +35,18 @@ std::vector<FluidRegion> read_fluid_regions(const Params& root, const std::strin
 // [drag_curve.NAME.<coefficient>] value = ... (InputError naming the file on anything missing).
 // With `name` given, that curve's coefficients instead of the chosen one (a fixed curve needs none).
 drag::DragCurve read_chosen_curve(const std::string& parameters_toml, const std::string& name = "");
+
+// The paste (and steel-ball) values of a lab parameters.toml (`pastemix lab reduce`), for the steel-ball
+// validations and the viscosity calibration. Required: paste.yield_stress, paste.density and the chosen drag
+// curve (or `curve_name`'s coefficients); optional (absent -> nullopt): paste.plastic_viscosity (the lab
+// reduction does not produce it: it is the calibrated quantity), steel_ball.restitution,
+// steel_ball.static_friction, steel_ball.density. InputError naming the file and key on anything malformed.
+struct LabPaste {
+  double tau_y = 0.0;        // Pa
+  double density = 0.0;      // kg/m3
+  drag::DragCurve curve;
+  std::optional<double> eta_B, ball_restitution, ball_friction, ball_density;
+};
+LabPaste read_lab_paste(const std::string& parameters_toml, const std::string& curve_name = "");
 
 }  // namespace pastemix::model::fluid

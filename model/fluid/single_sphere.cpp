@@ -14,6 +14,7 @@ std::string single_sphere_scene(const SphereRun& r, double end_time) {
   const double half = r.box_half > 0.0 ? r.box_half : 10.0 * r.depth;
   const double z0 = r.drop >= 0.0 ? r.depth + r.drop + rad : r.depth + r.drop - rad;
   const double top = std::max(z0, r.depth) + 0.1 + 2.0 * r.d;
+  const double dom = std::max(half, r.mould_radius);  // m, the domain encloses the fluid box and the mould
   std::string s = fmt::format(
       "seed = 1\ntime_step = {:.17g}\nend_time = {:.17g}\n"
       "[domain]\nmin = [{h:.17g}, {h:.17g}, -0.01]\nmax = [{H:.17g}, {H:.17g}, {top:.17g}]\n"
@@ -23,12 +24,16 @@ std::string single_sphere_scene(const SphereRun& r, double end_time) {
       "[[interaction]]\nmaterials = \"sphere/sphere\"\nrestitution = 0.5\nfriction = 0.0\n"
       "[[interaction]]\nmaterials = \"sphere/wall\"\nrestitution = 0.5\nfriction = 0.0\n"
       "[[interaction]]\nmaterials = \"wall/wall\"\nrestitution = 0.5\nfriction = 0.0\n"
-      "[[particle]]\nmaterial = \"sphere\"\nradius = {rad:.17g}\nposition = [0, 0, {z0:.17g}]\n"
+      "[[particle]]\nmaterial = \"sphere\"\nradius = {rad:.17g}\nposition = [{x0:.17g}, 0, {z0:.17g}]\n"
       "velocity = [0, 0, {vz:.17g}]\n",
-      r.dt, end_time, fmt::arg("h", -half - r.d), fmt::arg("H", half + r.d), fmt::arg("top", top),
+      r.dt, end_time, fmt::arg("h", -dom - r.d), fmt::arg("H", dom + r.d), fmt::arg("x0", r.x0), fmt::arg("top", top),
       fmt::arg("rho", r.rho_p), fmt::arg("rad", rad), fmt::arg("z0", z0), fmt::arg("vz", r.vz0), fmt::arg("E", r.youngs_modulus));
   if (r.floor)
     s += "[[wall]]\nname = \"floor\"\ntype = \"plane\"\nmaterial = \"wall\"\npoint = [0, 0, 0]\nnormal = [0, 0, 1]\n";
+  if (r.mould_radius > 0.0)
+    s += fmt::format("[[wall]]\nname = \"mould\"\ntype = \"cylinder\"\nmaterial = \"wall\"\ncenter = [0, 0]\n"
+                     "radius = {:.17g}\nz_min = 0\nz_max = {:.17g}\n",
+                     r.mould_radius, r.depth);  // the mould's rim: the paste fills it
   s += fmt::format("[[fluid]]\nx = [{:.17g}, {:.17g}]\ny = [{:.17g}, {:.17g}]\nbottom = 0\nsurface = {:.17g}\n"
                    "density = {:.17g}\n",
                    -half, half, -half, half, r.depth, r.rho_f);

@@ -25,6 +25,8 @@ struct SphereRun {
   double vz0 = 0.0;        // m/s, initial vertical velocity
   double dt = 1e-4;        // s
   bool floor = true;       // a plane wall at the bottom
+  double mould_radius = 0.0;  // m, > 0: a cylinder wall on the axis from the bottom to above the release
+  double x0 = 0.0;         // m, horizontal offset of the release from the axis (a ball near the mould wall)
   double youngs_modulus = 2e11;  // Pa, of the sphere and wall materials (contacts only)
   bool yield_term = true, partial_submergence = true, buoyancy = true, surface_rise = true;
 };

@@ -7,7 +7,6 @@
 #include <fmt/format.h>
 
 #include "base/error.h"
-#include "base/rng.h"
 #include "model/scene.h"
 
 namespace pastemix::model::fluid {
@@ -82,6 +81,8 @@ BallDrop steel_ball_drop(const SteelBallPaste& p, double d, double height, doubl
   // The mould is round (75 mm); the fluid box has the same area, so the surface rises as in the mould.
   r.box_half = 0.5 * std::sqrt(kPiV / 4.0) * p.mould_diameter;
   r.drop = height, r.dt = p.dt, r.floor = true;
+  r.mould_radius = p.mould_wall ? 0.5 * p.mould_diameter : 0.0;
+  r.x0 = p.offset;
   const double t_fall = std::sqrt(2.0 * std::max(height, 0.0) / kG);
   const SphereTrace tr = run_single_sphere(r, t_fall + 5.0, 50);
   BallDrop b;
@@ -114,80 +115,6 @@ Calibration calibrate_viscosity(const SteelBallPaste& p, double d, double height
   c.eta = std::sqrt(lo * hi);
   c.distance = dist(c.eta);
   return c;
-}
-
-}  // namespace pastemix::model::fluid
-
-namespace pastemix::model::fluid {
-
-std::string ball_pour_scene(const SteelBallPaste& p, double eta_B, std::uint64_t seed, double fall, double end_time,
-                            int balls, double E) {
-  const double r = 0.0063, lx = 0.20, ly = 0.165, depth = 0.15;
-  // Rayleigh time of the ball, 20 % of it.
-  const double G = E / (2.0 * 1.3);
-  const double dt = 0.2 * kPiV * r * std::sqrt(p.rho_ball / G) / (0.8766 + 0.163 * 0.3);
-  std::string s = fmt::format(
-      "seed = {}\ntime_step = {:.6g}\nend_time = {}\n[domain]\nmin = [-0.01, -0.01, -0.01]\nmax = [{}, {}, 0.8]\n"
-      "[contact]\nlaw = \"hertz_mindlin\"\n[output]\ninterval = {}\n"
-      "[[material]]\nname = \"steel\"\ndensity = {}\nyoungs_modulus = {:.6g}\npoisson_ratio = 0.3\n"
-      "[[material]]\nname = \"frame\"\ndensity = 1200\nyoungs_modulus = {:.6g}\npoisson_ratio = 0.3\n"
-      "[[interaction]]\nmaterials = \"steel/steel\"\nrestitution = 0.6\nfriction = 0.3\n"
-      "[[interaction]]\nmaterials = \"steel/frame\"\nrestitution = 0.6\nfriction = 0.3\n"
-      "[[wall]]\nname = \"frame\"\ntype = \"box\"\nmaterial = \"frame\"\nmin = [0, 0, 0]\nmax = [{}, {}, 0.8]\n"
-      "[[fluid]]\nname = \"paste\"\nx = [0, {}]\ny = [0, {}]\nbottom = 0\nsurface = {}\ndensity = {}\n"
-      "rheology = \"bingham\"\nyield_stress = {}\nplastic_viscosity = {}\ncurve = \"{}\"\nsolids_fraction = 0.75\n",
-      seed, dt, end_time, lx + 0.01, ly + 0.01, end_time, p.rho_ball, E, E, lx, ly, lx, ly, depth, p.rho_paste,
-      p.tau_y, eta_B, p.curve.info().name);
-  if (!p.curve.coefficients.empty()) {
-    s += "coefficients = [";
-    for (std::size_t k = 0; k < p.curve.coefficients.size(); ++k)
-      s += fmt::format("{}{:.17g}", k ? ", " : "", p.curve.coefficients[k]);
-    s += "]\n";
-  }
-  // Seeded random non-overlapping positions in the start cylinder (rejection sampling, layer by layer).
-  Rng rng(seed);
-  std::vector<Vec3> pos;
-  const double rc = 0.035 - r, z0 = depth + fall + r;
-  double z_top = z0;
-  while (static_cast<int>(pos.size()) < balls) {
-    for (int tries = 0; tries < 2000 && static_cast<int>(pos.size()) < balls; ++tries) {
-      const double a = 2.0 * kPiV * rng.uniform(), rr = rc * std::sqrt(rng.uniform());
-      const Vec3 c{0.5 * lx + rr * std::cos(a), 0.5 * ly + rr * std::sin(a), z_top + 0.4 * r * rng.uniform()};
-      bool ok = true;
-      for (const Vec3& q : pos) ok = ok && norm(q - c) > 2.0 * r + 2e-4;
-      if (ok) pos.push_back(c);
-    }
-    z_top += 2.0 * r + 1e-3;
-  }
-  for (const Vec3& c : pos)
-    s += fmt::format("[[particle]]\nmaterial = \"steel\"\nradius = {}\nposition = [{:.9g}, {:.9g}, {:.9g}]\n", r, c.x,
-                     c.y, c.z);
-  return s;
-}
-
-BallPour ball_pour(const SteelBallPaste& p, double eta_B, std::uint64_t seed, double fall, double end_time, int balls,
-                   double E) {
-  const Scene scene = parse_scene(ball_pour_scene(p, eta_B, seed, fall, end_time, balls, E), "ball_pour.toml");
-  World w = make_world(scene);
-  const long steps = std::lround(end_time / scene.config.dt);
-  for (long s = 1; s <= steps; ++s) {
-    w.step();
-    if (s % 100 == 0) w.check();
-  }
-  w.check();
-  BallPour b;
-  const auto& pt = w.particles();
-  b.z_min = 1e300, b.z_max = -1e300;
-  for (std::size_t a = 0; a < pt.size(); ++a) {
-    b.x.push_back(pt.x[a].x);
-    b.y.push_back(pt.x[a].y);
-    b.z.push_back(pt.x[a].z);
-    b.z_min = std::min(b.z_min, pt.x[a].z);
-    b.z_max = std::max(b.z_max, pt.x[a].z);
-    b.at_rest += norm2(pt.v[a]) == 0.0;
-  }
-  b.surface = w.fluid()->surface_z(0);
-  return b;
 }
 
 }  // namespace pastemix::model::fluid

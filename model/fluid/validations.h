@@ -47,6 +47,8 @@ struct SteelBallPaste {
   double rho_paste = 1843.0; // kg/m3
   double tau_y = 138.0;      // Pa, this repository's slump reduction (Pashias-Boger, H = 152 mm); printed 136
   double mould_diameter = 0.075, mould_height = 0.150;  // m (paste fills the mould)
+  bool mould_wall = true;    // the mould's cylinder wall (a steel contact surface); false: no side wall
+  double offset = 0.0;       // m, release point's distance from the mould axis
   drag::DragCurve curve{drag::CurveId::published_4_19, {}};
   double dt = 2e-5;          // s
 };
@@ -68,23 +70,5 @@ struct Calibration {
 };
 Calibration calibrate_viscosity(const SteelBallPaste& paste, double d, double height, double distance,
                                 double eta_lo = 0.01, double eta_hi = 100.0, double rel_tol = 1e-4);
-
-}  // namespace pastemix::model::fluid
-
-namespace pastemix::model::fluid {
-
-// --- 5. 68 steel balls (12.6 mm) falling 15 cm into the paste (20 x 16.5 x 15 cm box, full of paste). ---
-// The funnel is not modelled: the balls start at rest, seeded random and non-overlapping, in a cylinder of
-// radius 35 mm on the box axis whose lowest ball bottom is `fall` above the paste surface.
-struct BallPour {
-  std::vector<double> x, y, z;  // m, final centre positions (box corner at the origin, z above its bottom)
-  double z_min = 0.0, z_max = 0.0;
-  int at_rest = 0;        // balls with exactly zero velocity at the end
-  double surface = 0.0;   // m, final free surface
-};
-BallPour ball_pour(const SteelBallPaste& paste, double eta_B, std::uint64_t seed, double fall = 0.15,
-                   double end_time = 0.8, int balls = 68, double youngs_modulus = 2e11);
-std::string ball_pour_scene(const SteelBallPaste& paste, double eta_B, std::uint64_t seed, double fall,
-                            double end_time, int balls, double youngs_modulus);
 
 }  // namespace pastemix::model::fluid

@@ -243,27 +243,49 @@ TEST_CASE("fluid engine: calibrate viscosity recovers a known eta_B from a synth
 }
 
 TEST_CASE("fluid CLI: validate water, calibrate viscosity, bad input exits 2, unreachable target exits 3") {
+  const std::string fixture = (source_dir() / "tests/model/fluid/data/parameters.toml").string();
   const auto w = pastemix::test::run_pastemix("validate water --dt 1e-3");
   CHECK(w.exit_code == 0);
   CHECK(w.output.find("max rel error") != std::string::npos);
-  const auto c = pastemix::test::run_pastemix("calibrate viscosity --ball 12.6 --height 255 --distance 57.16 --dt 1e-4");
+  const auto c = pastemix::test::run_pastemix("calibrate viscosity --ball 12.6 --height 255 --distance 57.16 --dt 1e-4"
+                                              " --params " + fixture);
   CHECK(c.exit_code == 0);
-  CHECK(std::stod(c.output.substr(c.output.find("eta_B = ") + 8)) == doctest::Approx(0.7).epsilon(1e-3));  // 57.16 mm is the distance 0.7 Pa.s gives
+  CHECK(c.output.find("tau_y 138 Pa (" + fixture + " paste.yield_stress)") != std::string::npos);
+  // 57.16 mm is the distance 0.7 Pa.s gives with the mould wall (validate steel-balls, VALIDATION.md 4).
+  CHECK(std::stod(c.output.substr(c.output.find("eta_B = ") + 8)) == doctest::Approx(0.7).epsilon(1e-3));
   CHECK(pastemix::test::run_pastemix("calibrate viscosity --distance -3").exit_code == 2);
-  CHECK(pastemix::test::run_pastemix("calibrate viscosity --distance 500 --dt 1e-4").exit_code == 3);
+  CHECK(pastemix::test::run_pastemix("calibrate viscosity --distance 500 --dt 1e-4 --params " + fixture).exit_code == 3);
+  // No parameter store: exit 2, naming the path and what to run.
+  const auto m = pastemix::test::run_pastemix("validate steel-balls --params /nonexistent/parameters.toml");
+  CHECK(m.exit_code == 2);
+  CHECK(m.output.find("/nonexistent/parameters.toml") != std::string::npos);
+  CHECK(m.output.find("pastemix lab reduce") != std::string::npos);
+  // ... unless every value is given (a fixed curve needs no coefficients).
+  const auto e = pastemix::test::run_pastemix("calibrate viscosity --distance 57.16 --dt 1e-4 --params /nonexistent/p.toml"
+                                              " --tau-y 138 --rho-paste 1843 --curve published_4_19");
+  CHECK(e.exit_code == 0);
+  // An explicit value overrides the store.
+  const auto o = pastemix::test::run_pastemix("calibrate viscosity --distance 57.16 --dt 1e-4 --tau-y 120 --params " +
+                                              fixture);
+  CHECK(o.exit_code == 0);
+  CHECK(o.output.find("tau_y 120 Pa (command line)") != std::string::npos);
+  CHECK(std::stod(o.output.substr(o.output.find("eta_B = ") + 8)) > 0.75);  // less yield drag: more viscous
   const auto s = pastemix::test::run_pastemix("validate settling " + (source_dir() / "datasets/thesis").string() +
                                               " --curve published_4_19 --rows 30");
   CHECK(s.exit_code == 0);
   CHECK(s.output.find("trapped 0") != std::string::npos);
 }
 
-TEST_CASE("fluid engine: steel balls poured into the paste all stop suspended inside the lab's Z range") {
-  // Reduced: 8 balls instead of 68, 0.6 s (`pastemix validate ball-pour` runs the 68-ball seeds).
+TEST_CASE("fluid engine: the mould's side wall leaves a vertical fall unchanged, on the axis and near the wall") {
+  // The fluid is a force field (no wall effect on the drag); a ball falling straight down never touches the
+  // cylinder, so the distance is the same to the bit, with or without it, on the axis or 20 mm off it.
   SteelBallPaste p;
-  const BallPour b = ball_pour(p, 0.7, 1, 0.15, 0.6, 8);
-  CHECK(b.at_rest == 8);
-  CHECK(b.z_min > 0.085);  // lab: all 68 balls between Z = 8.5 and 13.5 cm
-  CHECK(b.z_max < 0.135);
+  p.dt = 1e-4;
+  const double with = steel_ball_drop(p, 0.016, 0.255, 0.7).distance;
+  p.offset = 0.020;  // the 16 mm ball's surface 9.5 mm from the wall
+  CHECK(steel_ball_drop(p, 0.016, 0.255, 0.7).distance == with);
+  p.mould_wall = false;
+  CHECK(steel_ball_drop(p, 0.016, 0.255, 0.7).distance == with);
 }
 
 TEST_CASE("fluid switches: buoyancy, yield_term, partial_submergence and surface_rise each change what they say") {

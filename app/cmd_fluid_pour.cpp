@@ -1,0 +1,158 @@
+// SPDX-License-Identifier: MIT
+// `pastemix validate ball-pour`: the thesis's multi-ball test (68 balls of 12.6 mm poured from the funnel,
+// 15 cm fall into the paste; model/fluid/ball_pour.h), over seeded runs: per-seed Z range, balls suspended,
+// balls left in the funnel, and the presence-probability maps (PNG, scripts/plot_ball_pour.py).
+#include <sys/wait.h>
+
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <filesystem>
+#include <memory>
+
+#include <fmt/format.h>
+
+#include "app/fluid_paste.h"
+#include "base/error.h"
+#include "base/staged_output.h"
+#include "model/fluid/ball_pour.h"
+
+namespace pastemix::app {
+
+namespace {
+
+std::string quote(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+// Runs the plotting script on the (staged) CSV; returns "" or why no PNG was written.
+std::string plot(const std::filesystem::path& csv, const std::filesystem::path& maps,
+                 const std::filesystem::path& hist) {
+  const char* py = std::getenv("PASTEMIX_PYTHON");
+  const std::string python = py && *py ? py : "/usr/bin/python3";
+  const std::string script = PASTEMIX_SOURCE_DIR "/scripts/plot_ball_pour.py";
+  if (!std::filesystem::exists(python)) return python + " not found";
+  const std::string cmd = fmt::format("{} {} {} {} {} 2>&1", quote(python), quote(script), quote(csv.string()),
+                                      quote(maps.string()), quote(hist.string()));
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) return "popen failed";
+  std::string out;
+  std::array<char, 4096> buf{};
+  std::size_t n;
+  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) out.append(buf.data(), n);
+  const int st = pclose(pipe);
+  if (!(WIFEXITED(st) && WEXITSTATUS(st) == 0)) return fmt::format("{} failed: {}", script, out);
+  return "";
+}
+
+}  // namespace
+
+void register_pour(CLI::App* val) {
+  struct Opts {
+    int seeds = 15;
+    std::string out = "out/fluid/ball_pour";
+    model::fluid::FunnelPour pour;
+    PasteOpts paste;
+  };
+  auto o = std::make_shared<Opts>();
+  CLI::App* cmd = val->add_subcommand(
+      "ball-pour", "68 balls of 12.6 mm poured from the funnel, 15 cm fall into the paste: Z range and maps");
+  cmd->add_option("--seeds", o->seeds, "seeded runs 1..N (default 15, as the thesis)");
+  cmd->add_option("--balls", o->pour.balls, "balls (default 68)");
+  cmd->add_option("--dt-rayleigh", o->pour.dt_rayleigh, "time step as a fraction of the Rayleigh time (default 0.5)");
+  cmd->add_option("--end", o->pour.end_time, "simulated time limit (s), default 3 (runs stop when all balls rest)");
+  cmd->add_option("--release", o->pour.release, "time the plate under the funnel is removed (s), default 0.25");
+  cmd->add_option("--fall", o->pour.fall, "exit-tube bottom to paste surface (m), default 0.15");
+  cmd->add_option("--exit-diameter", o->pour.exit_d, "funnel exit diameter (m), default 0.04");
+  cmd->add_option("--out", o->out, "folder for ball_pour.csv, ball_pour_maps.png, ball_pour_z.png");
+  add_paste_options(cmd, o->paste);
+  cmd->callback([o] {
+    if (o->seeds < 1) throw InputError("--seeds", 0, "seeds", "must be at least 1");
+    if (!(o->pour.dt_rayleigh > 0.0)) throw InputError("--dt-rayleigh", 0, "dt-rayleigh", "must be positive");
+    const Paste paste = resolve_paste(o->paste);
+    model::fluid::FunnelPour p = o->pour;
+    p.tau_y = paste.tau_y, p.rho_paste = paste.rho, p.eta_B = paste.eta, p.curve = paste.curve;
+    p.restitution = paste.ball_restitution, p.friction = paste.ball_friction;
+    print_paste(paste);
+    const double tr = model::fluid::rayleigh_time(p);
+    fmt::print("{} balls of {} mm ({} kg/m3) in the funnel ({} cm top, {} cm exit, {} cm cone + {} cm tube) on a plate "
+               "removed at {} s; fall {} cm to the paste (frame {} x {} cm, paste {} cm); steel e {:.4g}, mu {:.4g} "
+               "({}); dt {:.3g} s = {} x Rayleigh time {:.3g} s\nlab: all balls suspended, Z = 8.5-13.5 cm (Z: ball "
+               "centre above the frame bottom)\n",
+               p.balls, 1e3 * p.ball_d, p.rho_ball, 100 * p.top_d, 100 * p.exit_d, 100 * p.cone_h, 100 * p.tube,
+               p.release, 100 * p.fall, 100 * p.box_x, 100 * p.box_y, 100 * p.paste_depth, p.restitution, p.friction,
+               paste.ball_from, p.dt_rayleigh * tr, p.dt_rayleigh, tr);
+    fmt::print("{:>5} {:>9} {:>9} {:>10} {:>9} {:>9} {:>9} {:>8} {:>7} {:>7} {:>7}\n", "seed", "Z min cm", "Z max cm",
+               "suspended", "in funnel", "1st out s", "last out", "t end s", "ids", "wall s", "cpu s");
+    double lo = 1e300, hi = -1e300;
+    long total = 0, suspended = 0, in_band = 0, stuck = 0, floor = 0;
+    bool ids_ok = true;
+    std::string rows = "seed,ball,x_m,y_m,z_m,in_funnel,below_surface\n";
+    // Wall time, and the process's CPU time (one thread: what the run costs on an idle core; the wall time
+    // on a shared machine also counts the time other processes held the core).
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::clock_t c0 = std::clock();
+    for (int k = 1; k <= o->seeds; ++k) {
+      const auto t1 = std::chrono::steady_clock::now();
+      const std::clock_t c1 = std::clock();
+      const auto b = model::fluid::ball_pour(p, static_cast<std::uint64_t>(k));
+      const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+      const double cpu = static_cast<double>(std::clock() - c1) / CLOCKS_PER_SEC;
+      const double top = p.paste_depth + p.fall;
+      for (std::size_t a = 0; a < b.z.size(); ++a) {
+        const bool funnel = b.z[a] + 0.5 * p.ball_d > top;
+        rows += fmt::format("{},{},{:.6f},{:.6f},{:.6f},{},{}\n", k, b.id[a], b.x[a], b.y[a], b.z[a], int(funnel),
+                            int(!funnel && b.z[a] < p.paste_depth));
+        in_band += !funnel && b.z[a] >= 0.085 && b.z[a] <= 0.135;
+      }
+      total += static_cast<long>(b.z.size());
+      suspended += b.at_rest, stuck += b.in_funnel, floor += b.on_floor, ids_ok = ids_ok && b.ids_ok;
+      if (b.in_funnel < p.balls) lo = std::min(lo, b.z_min), hi = std::max(hi, b.z_max);
+      fmt::print("{:>5} {:>9.2f} {:>9.2f} {:>10} {:>9} {:>9.3f} {:>9.3f} {:>8.3f} {:>7} {:>7.1f} {:>7.1f}\n", k, 100 * b.z_min,
+                 100 * b.z_max, b.at_rest, b.in_funnel, b.first_out, b.last_out, b.t_end, b.ids_ok ? "ok" : "LOST",
+                 wall, cpu);
+      std::fflush(stdout);
+    }
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double cpu = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
+    const double n = static_cast<double>(total);
+    fmt::print("all {} seeds: Z = {:.2f}-{:.2f} cm (lab 8.5-13.5); suspended at rest {}/{} ({:.1f} %); inside "
+               "8.5-13.5 cm {}/{} ({:.1f} %); on the floor {}; left in the funnel {}; ids {}; {:.1f} s wall, {:.1f} s CPU ({:.1f} s CPU per seed)\n",
+               o->seeds, 100 * lo, 100 * hi, suspended, total, 100.0 * static_cast<double>(suspended) / n, in_band, total,
+               100.0 * static_cast<double>(in_band) / n, floor, stuck, ids_ok ? "conserved" : "NOT conserved", wall, cpu,
+               cpu / o->seeds);
+    namespace fs = std::filesystem;
+    const fs::path dir = o->out;
+    fs::create_directories(dir);
+    StagedOutput staged;
+    const fs::path csv = staged.path(dir / "ball_pour.csv");
+    {
+      std::FILE* f = std::fopen(csv.c_str(), "w");
+      if (!f || std::fputs(rows.c_str(), f) < 0 || std::fclose(f) != 0)
+        throw RuntimeFailure(fmt::format("cannot write {}", csv.string()));
+    }
+    // The PNGs are drawn under temporary names and staged only if the script succeeded.
+    const fs::path tmaps = dir / ".ball_pour_maps.tmp.png", thist = dir / ".ball_pour_z.tmp.png";
+    const std::string why = plot(csv, tmaps, thist);
+    if (why.empty()) {
+      fs::rename(tmaps, staged.path(dir / "ball_pour_maps.png"));
+      fs::rename(thist, staged.path(dir / "ball_pour_z.png"));
+    } else {
+      std::error_code ec;
+      fs::remove(tmaps, ec), fs::remove(thist, ec);
+    }
+    staged.commit();
+    fmt::print("wrote {}\n", (dir / "ball_pour.csv").string());
+    if (why.empty())
+      fmt::print("wrote {} and {}\n", (dir / "ball_pour_maps.png").string(), (dir / "ball_pour_z.png").string());
+    else
+      fmt::print(stderr, "warning: no PNG maps written: {}\n", why);
+  });
+}
+
+}  // namespace pastemix::app

@@ -1,0 +1,166 @@
+// SPDX-License-Identifier: MIT
+#include "model/fluid/ball_pour.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "base/error.h"
+#include "model/insert/fill.h"
+#include "model/scene.h"
+
+namespace pastemix::model::fluid {
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+
+struct Geometry {
+  double cx, cy;       // m, funnel and frame axis
+  double z_tube;       // m, bottom of the exit tube (the plate)
+  double z_exit;       // m, bottom of the cone = top of the tube
+  double z_top;        // m, top of the cone
+};
+
+Geometry geometry(const FunnelPour& p) {
+  Geometry g;
+  g.cx = 0.5 * p.box_x, g.cy = 0.5 * p.box_y;
+  g.z_tube = p.paste_depth + p.fall;
+  g.z_exit = g.z_tube + p.tube;
+  g.z_top = g.z_exit + p.cone_h;
+  return g;
+}
+
+// The funnel as the scene expands it (model/scene.cpp): cone frustum plus exit tube, so the random
+// placement keeps clear of the same surfaces the contacts see.
+std::vector<Wall> funnel_walls(const FunnelPour& p, const Geometry& g) {
+  Wall cone;
+  cone.kind = WallKind::revolution;
+  cone.origin = {g.cx, g.cy, 0.0};
+  cone.r0 = 0.5 * p.exit_d, cone.z0 = g.z_exit, cone.r1 = 0.5 * p.top_d, cone.z1 = g.z_top;
+  Wall tube = cone;
+  tube.r0 = tube.r1 = 0.5 * p.exit_d, tube.z0 = g.z_tube, tube.z1 = g.z_exit;
+  return {cone, tube};
+}
+}  // namespace
+
+double rayleigh_time(const FunnelPour& p) {
+  const double G = p.youngs_modulus / (2.0 * (1.0 + p.poisson));
+  return kPi * 0.5 * p.ball_d * std::sqrt(p.rho_ball / G) / (0.8766 + 0.163 * p.poisson);
+}
+
+std::string ball_pour_scene(const FunnelPour& p, std::uint64_t seed) {
+  if (p.balls < 1) throw InputError("ball_pour", 0, "balls", "needs at least one ball");
+  const Geometry g = geometry(p);
+  const double r = 0.5 * p.ball_d, R_top = 0.5 * p.top_d;
+  const double dt = p.dt_rayleigh * rayleigh_time(p);
+  std::string s = fmt::format(
+      "seed = {seed}\ntime_step = {dt:.9g}\nend_time = {end}\n"
+      "[domain]\nmin = [{xl}, {yl}, -0.01]\nmax = [{xh}, {yh}, {zh}]\n"
+      "[contact]\nlaw = \"hertz_mindlin\"\nrolling = \"constant_torque\"\n[output]\ninterval = {end}\n"
+      "[[material]]\nname = \"steel\"\ndensity = {rho}\nyoungs_modulus = {E:.9g}\npoisson_ratio = {nu}\n"
+      "[[interaction]]\nmaterials = \"steel/steel\"\nrestitution = {e}\nfriction = {mu}\nrolling_friction = {mr}\n"
+      "[[wall]]\nname = \"frame\"\ntype = \"box\"\nmaterial = \"steel\"\nmin = [0, 0, 0]\nmax = [{bx}, {by}, {bz}]\n"
+      "[[wall]]\nname = \"funnel\"\ntype = \"funnel\"\nmaterial = \"steel\"\ncenter = [{cx}, {cy}]\nz_exit = {ze:.9g}\n"
+      "exit_diameter = {de}\ntop_diameter = {dtop}\nheight = {h}\ntube_length = {tube}\n"
+      "[[wall]]\nname = \"plate\"\ntype = \"disk\"\nmaterial = \"steel\"\ncenter = [{cx}, {cy}, {zt:.9g}]\n"
+      "radius = {rp}\nremove_at = {rel}\n"
+      "[[fluid]]\nname = \"paste\"\nx = [0, {bx}]\ny = [0, {by}]\nbottom = 0\nsurface = {bz}\ndensity = {rf}\n"
+      "rheology = \"bingham\"\nyield_stress = {tau:.9g}\nplastic_viscosity = {eta:.9g}\ncurve = \"{curve}\"\n"
+      "solids_fraction = 0.75\n",
+      fmt::arg("seed", seed), fmt::arg("dt", dt), fmt::arg("end", p.end_time),
+      fmt::arg("xl", std::min(0.0, g.cx - R_top) - 0.01), fmt::arg("yl", std::min(0.0, g.cy - R_top) - 0.01),
+      fmt::arg("xh", std::max(p.box_x, g.cx + R_top) + 0.01), fmt::arg("yh", std::max(p.box_y, g.cy + R_top) + 0.01),
+      fmt::arg("zh", g.z_top + 0.02), fmt::arg("rho", p.rho_ball), fmt::arg("E", p.youngs_modulus),
+      fmt::arg("nu", p.poisson), fmt::arg("e", p.restitution), fmt::arg("mu", p.friction), fmt::arg("mr", p.rolling),
+      fmt::arg("bx", p.box_x), fmt::arg("by", p.box_y), fmt::arg("bz", p.paste_depth), fmt::arg("cx", g.cx),
+      fmt::arg("cy", g.cy), fmt::arg("ze", g.z_exit), fmt::arg("de", p.exit_d), fmt::arg("dtop", p.top_d),
+      fmt::arg("h", p.cone_h), fmt::arg("tube", p.tube), fmt::arg("zt", g.z_tube), fmt::arg("rp", 0.5 * p.exit_d + 0.01),
+      fmt::arg("rel", p.release), fmt::arg("rf", p.rho_paste), fmt::arg("tau", p.tau_y), fmt::arg("eta", p.eta_B),
+      fmt::arg("curve", p.curve.info().name));
+  if (!p.curve.coefficients.empty()) {
+    s += "coefficients = [";
+    for (std::size_t k = 0; k < p.curve.coefficients.size(); ++k)
+      s += fmt::format("{}{:.17g}", k ? ", " : "", p.curve.coefficients[k]);
+    s += "]\n";
+  }
+  // Seeded random loose placement in the lowest fill_height of the cone (the engine's insertion).
+  FillRegion region;
+  region.shape = FillRegion::frustum;
+  region.cx = g.cx, region.cy = g.cy;
+  region.z_min = g.z_exit, region.z_max = g.z_exit + p.fill_height;
+  region.r_bottom = 0.5 * p.exit_d;
+  region.r_top = 0.5 * p.exit_d + 0.5 * (p.top_d - p.exit_d) * p.fill_height / p.cone_h;
+  const std::vector<double> radii(static_cast<std::size_t>(p.balls), r);
+  const FillResult fill = fill_region(region, radii, {}, {}, funnel_walls(p, g), seed);
+  if (!fill.complete)
+    throw InputError("ball_pour", 0, "fill_height",
+                     fmt::format("only {} of {} balls fit in the lowest {} m of the funnel", fill.placed, p.balls,
+                                 p.fill_height));
+  for (const Vec3& c : fill.positions)
+    s += fmt::format("[[particle]]\nmaterial = \"steel\"\nradius = {}\nposition = [{:.9g}, {:.9g}, {:.9g}]\n", r, c.x,
+                     c.y, c.z);
+  return s;
+}
+
+BallPourResult ball_pour(const FunnelPour& p, std::uint64_t seed) {
+  const Scene scene = parse_scene(ball_pour_scene(p, seed), fmt::format("ball_pour_seed{}.toml", seed));
+  World w = make_world(scene);
+  const Geometry g = geometry(p);
+  const double r = 0.5 * p.ball_d;
+  BallPourResult b;
+  b.seed = seed;
+  b.dt = scene.config.dt;
+  const long max_steps = std::lround(p.end_time / b.dt);
+  const auto& pt = w.particles();
+  std::vector<char> out(pt.size(), 0);
+  std::size_t n_out = 0;
+  for (long s = 1; s <= max_steps; ++s) {
+    w.step();
+    b.steps = s;
+    if (s % 50 == 0) {  // exit passages: a ball at 2 m/s moves 0.35 mm in 50 steps of 3.5 us
+      for (std::size_t a = 0; a < pt.size(); ++a)
+        if (!out[a] && pt.x[a].z + r < g.z_tube) {
+          out[a] = 1;
+          if (n_out++ == 0) b.first_out = w.time();
+          b.last_out = w.time();
+        }
+    }
+    if (s % 1000 == 0) {
+      w.check();
+      if (n_out < pt.size()) continue;
+      bool all_rest = true;
+      for (std::size_t a = 0; a < pt.size() && all_rest; ++a)
+        all_rest = norm2(pt.v[a]) == 0.0 && w.fluid()->inside(static_cast<long>(a));
+      if (all_rest) break;
+    }
+  }
+  w.check();
+  b.t_end = w.time();
+  b.z_min = 1e300, b.z_max = -1e300;
+  for (std::size_t a = 0; a < pt.size(); ++a) {
+    b.x.push_back(pt.x[a].x);
+    b.y.push_back(pt.x[a].y);
+    b.z.push_back(pt.x[a].z);
+    b.id.push_back(pt.id[a]);
+    const bool inside = w.fluid()->inside(static_cast<long>(a));
+    b.in_paste += inside;
+    const bool floor = pt.x[a].z - r < 1e-4;
+    b.on_floor += floor;
+    b.at_rest += inside && !floor && norm2(pt.v[a]) == 0.0;
+    if (pt.x[a].z + r > g.z_tube) {
+      ++b.in_funnel;  // still in (or partly in) the funnel
+      continue;
+    }
+    b.z_min = std::min(b.z_min, pt.x[a].z);
+    b.z_max = std::max(b.z_max, pt.x[a].z);
+  }
+  std::vector<std::int64_t> ids = b.id;
+  std::sort(ids.begin(), ids.end());
+  b.ids_ok = static_cast<int>(ids.size()) == p.balls;
+  for (std::size_t k = 0; k < ids.size() && b.ids_ok; ++k) b.ids_ok = ids[k] == static_cast<std::int64_t>(k);
+  b.surface = w.fluid()->surface_z(0);
+  return b;
+}
+
+}  // namespace pastemix::model::fluid

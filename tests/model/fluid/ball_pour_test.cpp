@@ -1,0 +1,53 @@
+// SPDX-License-Identifier: MIT
+// The funnel pour of the thesis's multi-ball test (model/fluid/ball_pour.*) on a reduced size, and the
+// `pastemix validate ball-pour` command that runs it (app/cmd_fluid_pour.cpp).
+#include "model/fluid/ball_pour.h"
+
+#include <doctest/doctest.h>
+
+#include <filesystem>
+
+#include "tests/run_command.h"
+
+using namespace pastemix::model::fluid;
+
+namespace {
+std::filesystem::path source_dir() { return PASTEMIX_SOURCE_DIR; }
+}  // namespace
+
+TEST_CASE("fluid engine: 12 balls poured from the funnel: none left in it, all at rest, suspended in Z 8.5-13.5 cm") {
+  // Reduced from 68 balls x 15 seeds (`pastemix validate ball-pour`): 12 balls x 2 seeds, same funnel, fall,
+  // paste and time step.
+  FunnelPour p;
+  p.balls = 12;
+  for (std::uint64_t seed : {1, 2}) {
+    const BallPourResult b = ball_pour(p, seed);
+    INFO("seed " << seed << ": Z " << b.z_min << " - " << b.z_max << ", rest " << b.at_rest << ", funnel "
+                 << b.in_funnel << ", t " << b.t_end);
+    CHECK(b.ids_ok);
+    CHECK(b.in_funnel == 0);
+    CHECK(b.on_floor == 0);
+    CHECK(b.at_rest == 12);
+    CHECK(b.t_end < p.end_time);  // stopped because every ball rests
+    CHECK(b.z_min > 0.085);
+    CHECK(b.z_max < 0.135);
+  }
+}
+
+TEST_CASE("fluid CLI: validate ball-pour writes the positions and the maps, all balls out of the funnel") {
+  const std::string fixture = (source_dir() / "tests/model/fluid/data/parameters.toml").string();
+  const auto dir = std::filesystem::temp_directory_path() / "pastemix_ball_pour_test";
+  std::filesystem::remove_all(dir);
+  const auto r = pastemix::test::run_pastemix("validate ball-pour --seeds 1 --balls 6 --params " + fixture + " --out " +
+                                              dir.string());
+  INFO(r.output);
+  CHECK(r.exit_code == 0);
+  CHECK(r.output.find("suspended at rest 6/6 (100.0 %)") != std::string::npos);
+  CHECK(r.output.find("on the floor 0; left in the funnel 0; ids conserved") != std::string::npos);
+  CHECK(std::filesystem::exists(dir / "ball_pour.csv"));
+  if (r.output.find("no PNG maps written") == std::string::npos) {  // matplotlib present
+    CHECK(std::filesystem::exists(dir / "ball_pour_maps.png"));
+    CHECK(std::filesystem::exists(dir / "ball_pour_z.png"));
+  }
+  std::filesystem::remove_all(dir);
+}
