@@ -60,6 +60,7 @@ World::World(WorldConfig config, std::vector<Material> materials, LawTable laws,
 }
 
 void World::rebuild_neighbors() {
+  if (fluid_) fluid_->mark_stale();  // fluid candidates: no particle has moved skin/2 since this rebuild
   CandidatePairs c = build_pairs(p_.x, p_.radius, cfg_.skin);
 #ifdef PASTEMIX_VALIDATE
   // Expensive check: the cell list must find exactly the brute-force pairs.

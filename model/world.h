@@ -66,7 +66,12 @@ class World {
   const PairList& pairs() const { return pairs_; }
   Profile& profile() { return profile_; }
   // --- fluid hook (model/fluid/field.h): null without [[fluid]] -> no fluid pass, nothing to pay. ---
-  void set_fluid(std::shared_ptr<fluid::FluidField> field) { fluid_ = std::move(field); }
+  // The field visits only particles within the Verlet skin of a region (its candidate list, refreshed at
+  // every pair-list rebuild): particles far from the paste pay one flag read per step.
+  void set_fluid(std::shared_ptr<fluid::FluidField> field) {
+    fluid_ = std::move(field);
+    if (fluid_) fluid_->set_candidate_margin(cfg_.skin);
+  }
   const fluid::FluidField* fluid() const { return fluid_.get(); }
   const Profile& profile() const { return profile_; }
 

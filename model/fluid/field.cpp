@@ -25,12 +25,43 @@ double wetted_volume(const FluidRegion& reg, double z, double r, double z_s, boo
 
 }  // namespace
 
+void FluidField::refresh(const Particles& p) {
+  candidates_.clear();
+  const long n = static_cast<long>(p.size());
+  for (long a = 0; a < n; ++a) {
+    const Vec3& x = p.x[a];
+    const double reach = p.radius[a] + margin_;
+    for (std::size_t k = 0; k < regions_.size(); ++k) {
+      const FluidRegion& reg = regions_[k];
+      if (x.x >= reg.x_min - reach && x.x <= reg.x_max + reach && x.y >= reg.y_min - reach &&
+          x.y <= reg.y_max + reach && x.z >= reg.z_bottom - reach && x.z <= surface_[k] + reach) {
+        candidates_.push_back(a);
+        break;
+      }
+    }
+  }
+  surface_at_refresh_ = surface_;
+  stale_ = false;
+}
+
 void FluidField::update(const Particles& p) {
   const std::size_t n = p.size();
-  region_of_.assign(n, -1);
-  v_sub_.assign(n, 0.0);
+  const bool listed = margin_ > 0.0;
+  if (!listed || region_of_.size() != n) {  // every flag anew (no list, or particles were added)
+    region_of_.assign(n, -1);
+    v_sub_.assign(n, 0.0);
+    members_.clear();
+    stale_ = true;
+  }
+  if (listed) {
+    for (std::size_t k = 0; k < surface_.size() && !stale_; ++k)
+      if (surface_[k] - surface_at_refresh_[k] > 0.5 * margin_) stale_ = true;
+    if (stale_) refresh(p);
+    for (long a : members_) region_of_[static_cast<std::size_t>(a)] = -1, v_sub_[static_cast<std::size_t>(a)] = 0.0;
+  }
+  members_.clear();
   std::vector<double> wet(regions_.size(), 0.0);
-  for (std::size_t a = 0; a < n; ++a) {
+  auto visit = [&](std::size_t a) {
     const Vec3& x = p.x[a];
     for (std::size_t k = 0; k < regions_.size(); ++k) {
       const FluidRegion& reg = regions_[k];
@@ -39,10 +70,16 @@ void FluidField::update(const Particles& p) {
       if (vs <= 0.0) continue;
       region_of_[a] = static_cast<int>(k);
       v_sub_[a] = vs;
+      if (listed) members_.push_back(static_cast<long>(a));
       wet[k] += vs;
-      break;  // the first region that holds the particle owns it
+      return;  // the first region that holds the particle owns it
     }
-  }
+  };
+  // Both loops visit particles in ascending index order, so the surface sums are the same bits either way.
+  if (listed)
+    for (long a : candidates_) visit(static_cast<std::size_t>(a));
+  else
+    for (std::size_t a = 0; a < n; ++a) visit(a);
   for (std::size_t k = 0; k < regions_.size(); ++k)
     if (regions_[k].surface_rise) surface_[k] = regions_[k].z_surface0 + wet[k] / regions_[k].area();
 }

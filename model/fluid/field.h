@@ -18,6 +18,13 @@
 // Verlet step is thus stable for any dt, and the yield term cannot reverse the velocity (stick, no chatter).
 // No fluid torque is applied (the spin is untouched by the fluid: a stated simplification).
 //
+// Cost outside the regions: with a candidate margin (World sets its Verlet skin), update() visits only the
+// candidates: particles whose sphere came within the margin of a region's box (bottom to surface) at the last
+// refresh. The World marks the list stale at each pair-list rebuild, i.e. before any particle has moved more
+// than half the skin, and update() refreshes it itself when a surface has risen by more than half the margin,
+// so no particle can enter a region unseen. A particle far from every region then costs one flag read per
+// step (in the kick). Margin 0 (the default, for direct users of FluidField): every particle every step.
+//
 // Surface rise: z_s = z_s0 + (sum of V_sub of the particles in the region) / (box area), recomputed every
 // step from the V_sub of that step, which itself used the previous step's surface (a one-step lag: the
 // surface moves by far less than a radius per step). z_s0 is the height of the fluid without any rock.
@@ -53,6 +60,10 @@ class FluidField {
 
   // Region membership and submerged volumes at the current positions; then the surfaces rise.
   void update(const Particles& p);
+  // Candidate list (see above): margin in m (the Verlet skin); stale at every pair-list rebuild.
+  void set_candidate_margin(double margin) { margin_ = margin, stale_ = true; }
+  void mark_stale() { stale_ = true; }
+  std::size_t candidate_count() const { return margin_ > 0.0 ? candidates_.size() : region_of_.size(); }
   // New velocity after a kick of length h (s) of particle a under the non-drag force F (N, gravity
   // included, buoyancy not: added here); g is the gravity vector (m/s2).
   Vec3 kick(long a, const Vec3& v, const Vec3& F, double mass, double radius, double h, const Vec3& g) const;
@@ -69,6 +80,11 @@ class FluidField {
   std::vector<double> surface_;  // m, current free surface per region
   std::vector<int> region_of_;   // per particle, -1 outside every region
   std::vector<double> v_sub_;    // m3, per particle
+  double margin_ = 0.0;                     // m; 0: no candidate list
+  bool stale_ = true;
+  std::vector<long> candidates_, members_;  // ascending particle indices
+  std::vector<double> surface_at_refresh_;  // m, per region
+  void refresh(const Particles& p);
 };
 
 }  // namespace pastemix::model::fluid

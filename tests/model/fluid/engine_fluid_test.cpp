@@ -324,3 +324,84 @@ TEST_CASE("fluid switches: buoyancy, yield_term, partial_submergence and surface
   CHECK(whole.submerged_volume(0) == doctest::Approx(4.0 / 3.0 * M_PI * 1.25e-7));
   CHECK(whole.surface_z(0) == 0.1);  // no rise
 }
+
+TEST_CASE("fluid hook: the candidate list (particles near a region) gives the same bits as testing every particle") {
+  // ~300 rocks fall from above into a paste that fills half of the box: some stay beside the region, the
+  // rest cross its surface during the run, and the surface rises (the candidate list must follow it).
+  const std::string text = R"(
+seed = 5
+time_step = 2e-5
+end_time = 1.0
+[domain]
+min = [-0.02, -0.02, -0.02]
+max = [0.12, 0.12, 0.4]
+[contact]
+law = "hertz_mindlin"
+rolling = "constant_torque"
+[neighbor]
+skin = 1.25e-3
+[[material]]
+name = "rock"
+density = 2760
+youngs_modulus = 4.68e7
+poisson_ratio = 0.19
+[[interaction]]
+materials = "rock/rock"
+restitution = 0.79
+friction = 0.466
+rolling_friction = 0.15
+[[wall]]
+name = "box"
+type = "box"
+material = "rock"
+min = [0.0, 0.0, 0.0]
+max = [0.1, 0.1, 0.35]
+[[fluid]]
+x = [0.0, 0.05]
+y = [0.0, 0.1]
+bottom = 0.0
+surface = 0.03
+density = 1843
+rheology = "bingham"
+yield_stress = 10
+plastic_viscosity = 0.7
+curve = "published_4_19"
+[[factory]]
+material = "rock"
+mass = 0.02
+shape = "box"
+min = [0.005, 0.005, 0.05]
+max = [0.095, 0.095, 0.12]
+[[factory.psd]]
+d_min = 2.5e-3
+d_max = 5.0e-3
+fraction = 1.0
+)";
+  const Scene scene = parse_scene(text, "candidates.toml");
+  World listed = make_world(scene);
+  World all = make_world(scene);
+  REQUIRE(all.fluid() != nullptr);
+  auto every = std::make_shared<FluidField>(all.fluid()->regions());
+  all.set_fluid(every);
+  every->set_candidate_margin(0.0);  // after set_fluid, which sets the World's skin: every particle, every step
+  std::size_t max_inside = 0, min_candidates = listed.particles().size();
+  for (int s = 0; s < 12000; ++s) {  // 0.24 s: the rocks land in the paste or beside it
+    listed.step();
+    all.step();
+    std::size_t inside = 0;
+    for (std::size_t a = 0; a < listed.particles().size(); ++a) inside += listed.fluid()->inside(static_cast<long>(a));
+    max_inside = std::max(max_inside, inside);
+    min_candidates = std::min(min_candidates, listed.fluid()->candidate_count());
+  }
+  const auto& p = listed.particles();
+  const auto& q = all.particles();
+  bool same = true;
+  for (std::size_t a = 0; a < p.size(); ++a)
+    same = same && p.x[a].x == q.x[a].x && p.x[a].y == q.x[a].y && p.x[a].z == q.x[a].z && p.v[a].z == q.v[a].z;
+  CHECK(same);
+  CHECK(listed.fluid()->surface_z(0) == all.fluid()->surface_z(0));
+  CHECK(listed.fluid()->surface_z(0) > 0.03);  // rock entered and the surface rose
+  CHECK(max_inside > 20);
+  INFO("particles " << p.size() << ", fewest candidates " << min_candidates);
+  CHECK(min_candidates < p.size());  // the list really excluded particles far from the region
+}
