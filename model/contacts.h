@@ -6,10 +6,12 @@
 // Both passes are parallel over independent outputs, so the result is bitwise the same for any number of
 // threads. Wall contacts are computed per particle (a particle owns its wall contacts), in wall order.
 //
-// History (tangential spring, rolling spring) is keyed by the sorted pair of particle ids and carried
-// from the old list to the new one at every neighbour rebuild, so a lasting contact keeps its spring.
+// History (tangential spring, rolling spring) belongs to the pair of particles (dense indices, stable for
+// the whole run) and is carried from the old list to the new one at every neighbour rebuild, so a lasting
+// contact keeps its spring.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -23,7 +25,6 @@ namespace pastemix::model {
 struct PairList {
   int width = 0;                       // history doubles per contact
   std::vector<std::uint32_t> i, j;     // dense indices
-  std::vector<std::uint64_t> key;      // (min id << 32) | max id
   // R* = R_i R_j / (R_i + R_j) (m) and m* = m_i m_j / (m_i + m_j) (kg) per pair, computed once per rebuild
   // with the same expressions the pair pass used (so the same bits): two divisions less per contact.
   std::vector<double> r_star, m_star;
@@ -67,14 +68,90 @@ struct StepContext {
   RollingLaw rolling = RollingLaw::none;
 };
 
-// Pair forces, summed into p.f / p.torque / p.rolling_capacity (overwriting them); the law is chosen once
-// here with std::visit. With several threads: one output per pair, then gather_pair_forces; with one
-// thread the sums are made directly in the same order (bitwise the same result, no second pass).
-void compute_pair_forces(const LawTable& laws, const StepContext& ctx, Particles& p, PairList& pairs);
-// Sums pair forces into p.f / p.torque / p.rolling_capacity (overwrites them).
-void gather_pair_forces(const PairList& pairs, Particles& p);
-// Adds wall forces into p.f / p.torque / p.rolling_capacity.
-void add_wall_forces(const LawTable& laws, const StepContext& ctx, const std::vector<Wall>& walls,
-                     Particles& p, WallContacts& wc);
+// Pair forces. direct = true (one thread): summed straight into p.f / p.torque / p.rolling_capacity
+// (overwriting them) in ascending pair order. direct = false: one output per touching pair in pairs.out,
+// to be summed per particle by gather_one() (the same order, so the same bits). The law is chosen once
+// here with std::visit.
+void compute_pair_forces(const LawTable& laws, const StepContext& ctx, Particles& p, PairList& pairs, bool direct);
+
+// Sum of the pair outputs of particle a in ascending pair order (the order the direct pass adds them in).
+inline void gather_one(const PairList& L, std::size_t a, bool rot, Vec3& f, Vec3& t, double& roll) {
+  f = Vec3{};
+  t = Vec3{};
+  roll = 0.0;
+  for (std::uint32_t e = L.start[a]; e < L.start[a + 1]; ++e) {
+    const std::uint32_t k = L.entry[e] >> 1;
+    if (!L.touching[k]) continue;
+    const PairList::Out& o = L.out[k];
+    if ((L.entry[e] & 1u) == 0) {
+      f += o.force_i;
+      if (rot) {
+        t += o.torque_i;
+        roll += o.roll_i;
+      }
+    } else {
+      f -= o.force_i;
+      if (rot) {
+        t += o.torque_j;
+        roll += o.roll_j;
+      }
+    }
+  }
+}
+
+// The walls at the time the forces are evaluated, computed once per step.
+struct WallState {
+  std::vector<Vec3> shift, vel, origin;
+  std::vector<char> active, rect;
+  void update(const std::vector<Wall>& walls, double t);
+};
+
+// Wall forces of particle a added to f / t / roll, its candidate walls in wall order. Inline: the World
+// calls it inside its fused per-particle pass (forces, then the kick), one loop over the particles.
+template <class Law>
+inline void wall_forces_one(const std::vector<typename Law::Params>& table, const StepContext& ctx,
+                            const std::vector<Wall>& walls, const WallState& ws, const Particles& p,
+                            WallContacts& wc, std::size_t a, Vec3& f, Vec3& t, double& roll) {
+  const bool rot = p.has_rotation;
+  const bool constant_roll = ctx.rolling == RollingLaw::constant_torque;
+  const int nw = wc.walls;
+  const int w = wc.width;
+  for (std::uint32_t c = wc.start[a]; c < wc.start[a + 1]; ++c) {
+    const int k = wc.near[c];
+    const std::size_t slot = a * static_cast<std::size_t>(nw) + static_cast<std::size_t>(k);
+    double* hist = w ? &wc.history[slot * static_cast<std::size_t>(w)] : nullptr;
+    Vec3 n_to_wall;
+    const double dist = !ws.active[k] ? 1e300
+                        : ws.rect[k]  ? rectangle_distance(walls[k], ws.origin[k], p.x[a], &n_to_wall)
+                                      : wall_distance(walls[k], ws.shift[k], p.x[a], &n_to_wall);
+    const double overlap = p.radius[a] - dist;
+    if (overlap <= 0.0) {
+      if (wc.touching[slot]) std::fill(hist, hist + w, 0.0);
+      wc.touching[slot] = 0;
+      continue;
+    }
+    wc.touching[slot] = 1;
+    typename Law::Geometry g;
+    g.n = n_to_wall;
+    g.overlap = overlap;
+    const double arm = std::max(dist, 0.0);
+    g.R_star = p.radius[a];
+    g.m_star = p.mass[a];
+    g.v_rel = ws.vel[k] - p.v[a];
+    if (rot) {
+      g.v_rel -= cross(p.omega[a], g.n * arm);
+      g.w_rel = p.omega[a];
+    }
+    g.arm_i = arm;
+    g.dt = ctx.dt;
+    const auto& prm = table[static_cast<std::size_t>(p.material[a] * ctx.n_materials + walls[k].material)];
+    const auto r = Law::force(prm, g, hist, w);
+    f += r.force_i;
+    if (rot) {
+      t += cross(g.n * arm, r.tangential_i) + r.rolling_torque_i;
+      if (constant_roll) roll += prm.rolling_friction * r.normal_force * arm;
+    }
+  }
+}
 
 }  // namespace pastemix::model
