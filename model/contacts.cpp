@@ -28,7 +28,7 @@ void pair_chunk(const std::vector<typename Law::Params>& table, const StepContex
   const int w = L.width;
   std::uint32_t idx[kChunk];
   Vec3 sep[kChunk];
-  double sep2[kChunk];
+  double sep2[kChunk], rsums[kChunk];
   long m = 0;
   for (long k = k0; k < k1; ++k) {
     const std::uint32_t a = L.i[k], b = L.j[k];
@@ -39,6 +39,7 @@ void pair_chunk(const std::vector<typename Law::Params>& table, const StepContex
     idx[m] = static_cast<std::uint32_t>(k);
     sep[m] = d;
     sep2[m] = dist2;
+    rsums[m] = rsum;
     m += touch;
     // Not touching: forget the springs (a new contact starts from zero displacement). The force slots are
     // left stale: the gather skips pairs that are not touching.
@@ -49,7 +50,7 @@ void pair_chunk(const std::vector<typename Law::Params>& table, const StepContex
     const std::uint32_t k = idx[q];
     const std::uint32_t a = L.i[k], b = L.j[k];
     const Vec3 d = sep[q];
-    const double rsum = p.radius[a] + p.radius[b];
+    const double rsum = rsums[q];
     double* hist = w ? &L.history[static_cast<std::size_t>(k) * w] : nullptr;
     const double dist = std::sqrt(sep2[q]);
     typename Law::Geometry g;
@@ -66,7 +67,7 @@ void pair_chunk(const std::vector<typename Law::Params>& table, const StepContex
     }
     g.arm_i = arm_a;
     g.dt = ctx.dt;
-    const auto& prm = table[static_cast<std::size_t>(p.material[a] * ctx.n_materials + p.material[b])];
+    const auto& prm = table[L.law_index[k]];
     const auto r = Law::force(prm, g, hist, w);
     if constexpr (Direct) {
       p.f[a] += r.force_i;
@@ -164,12 +165,13 @@ void WallContacts::rebuild(const std::vector<Wall>& w, const Particles& p, doubl
   }
 }
 
-void PairList::rebuild(const CandidatePairs& c, const Particles& p) {
+void PairList::rebuild(const CandidatePairs& c, const Particles& p, int n_materials) {
   const std::size_t n = c.i.size();
   std::vector<double> new_hist(n * static_cast<std::size_t>(width), 0.0);
   std::vector<std::uint32_t> new_touch(n, 0);
   r_star.resize(n);
   m_star.resize(n);
+  law_index.resize(n);
   // History carry-over: a new pair (a, b) looks for (a, b) among the old pairs of a (its old CSR row, a
   // few entries). Only touching pairs carry a spring (a pair stops touching -> its history is zeroed).
   // Dense indices are stable (particles are never reordered or removed), so (a, b) names the same two
@@ -181,6 +183,7 @@ void PairList::rebuild(const CandidatePairs& c, const Particles& p) {
     const std::uint32_t a = c.i[k], b = c.j[k];
     r_star[k] = p.radius[a] * p.radius[b] / (p.radius[a] + p.radius[b]);
     m_star[k] = p.mass[a] * p.mass[b] / (p.mass[a] + p.mass[b]);
+    law_index[k] = static_cast<std::uint32_t>(p.material[a] * n_materials + p.material[b]);
     if (!carry) continue;
     for (std::uint32_t e = start[a]; e < start[a + 1]; ++e) {
       if (entry[e] & 1u) continue;  // a is j of that old pair: not (a, b) with a < b

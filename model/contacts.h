@@ -28,6 +28,7 @@ struct PairList {
   // R* = R_i R_j / (R_i + R_j) (m) and m* = m_i m_j / (m_i + m_j) (kg) per pair, computed once per rebuild
   // with the same expressions the pair pass used (so the same bits): two divisions less per contact.
   std::vector<double> r_star, m_star;
+  std::vector<std::uint32_t> law_index;  // material[i] * n_materials + material[j]: the law table entry
   std::vector<double> history;         // width per pair
   // What a touching pair contributes, packed together so the gather reads one or two cache lines per
   // pair (stale for pairs not touching: the gather skips them).
@@ -43,7 +44,7 @@ struct PairList {
 
   std::size_t size() const { return i.size(); }
   // Replaces the pairs by `c`, carrying over the history of pairs present before.
-  void rebuild(const CandidatePairs& c, const Particles& p);
+  void rebuild(const CandidatePairs& c, const Particles& p, int n_materials);
 };
 
 // Per particle and wall: history slots and a touching flag, plus a Verlet list of the walls within

@@ -68,7 +68,7 @@ void World::rebuild_neighbors() {
   if (brute_force_pairs(p_.x, p_.radius, cfg_.skin).i.size() != c.i.size())
     throw RuntimeFailure(fmt::format("neighbour list at t = {} s disagrees with brute force", t_));
 #endif
-  pairs_.rebuild(c, p_);
+  pairs_.rebuild(c, p_, static_cast<int>(materials_.size()));
   wall_contacts_.rebuild(walls_, p_, t_, cfg_.skin);
   x_at_rebuild_ = p_.x;
   t_at_rebuild_ = t_;
