@@ -121,8 +121,10 @@ void pair_pass(const std::vector<typename Law::Params>& table, const StepContext
 void WallContacts::resize(std::size_t particles, int n_walls, int history_width) {
   walls = n_walls;
   width = history_width;
-  history.assign(particles * static_cast<std::size_t>(n_walls) * static_cast<std::size_t>(width), 0.0);
-  touching.assign(particles * static_cast<std::size_t>(n_walls), 0);
+  start.assign(particles + 1, 0);
+  near.clear();
+  history.clear();
+  touching.clear();
 }
 
 void WallContacts::rebuild(const std::vector<Wall>& w, const Particles& p, double t, double skin) {
@@ -134,35 +136,49 @@ void WallContacts::rebuild(const std::vector<Wall>& w, const Particles& p, doubl
     shift[k] = w[k].displacement(t);
     active[k] = w[k].active(t);
   }
-  // Candidate flags in parallel (one distance per particle and wall, each slot owned by its particle),
-  // then the CSR in order.
+  // Candidate flags in parallel (one distance per particle and wall), then the CSR in order.
   std::vector<char> cand(n * nw, 0);
   const long nn = static_cast<long>(n);
 #pragma omp parallel for schedule(static) if (nn >= parallel_min_items)
   for (long a = 0; a < nn; ++a) {
+    const double reach = p.radius[a] + skin;
     for (std::size_t k = 0; k < nw; ++k) {
-      const std::size_t slot = static_cast<std::size_t>(a) * nw + k;
-      const double reach = p.radius[a] + skin;
       bool candidate = false;
       // The bound only skips walls that are clearly out of reach (the margin absorbs its round-off).
       if (active[k] && wall_distance_bound(w[k], shift[k], p.x[a]) < reach * (1.0 + 1e-9)) {
-        Vec3 nn_unused;
-        candidate = wall_distance(w[k], shift[k], p.x[a], &nn_unused) < reach;
+        Vec3 unused;
+        candidate = wall_distance(w[k], shift[k], p.x[a], &unused) < reach;
       }
-      cand[slot] = candidate;
-      if (!candidate && touching[slot]) {
-        touching[slot] = 0;
-        std::fill_n(&history[slot * static_cast<std::size_t>(width)], width, 0.0);
-      }
+      cand[static_cast<std::size_t>(a) * nw + k] = candidate;
     }
   }
-  start.assign(n + 1, 0);
-  near.clear();
+  std::vector<std::uint32_t> new_start(n + 1, 0);
+  std::vector<std::uint16_t> new_near;
   for (std::size_t a = 0; a < n; ++a) {
     for (std::size_t k = 0; k < nw; ++k)
-      if (cand[a * nw + k]) near.push_back(static_cast<std::uint16_t>(k));
-    start[a + 1] = static_cast<std::uint32_t>(near.size());
+      if (cand[a * nw + k]) new_near.push_back(static_cast<std::uint16_t>(k));
+    new_start[a + 1] = static_cast<std::uint32_t>(new_near.size());
   }
+  // History carry-over, per particle from its old candidates (a few entries).
+  const std::size_t wd = static_cast<std::size_t>(width);
+  std::vector<double> new_hist(new_near.size() * wd, 0.0);
+  std::vector<std::uint32_t> new_touch(new_near.size(), 0);
+#pragma omp parallel for schedule(static) if (nn >= parallel_min_items)
+  for (long a = 0; a < nn; ++a) {
+    for (std::uint32_t c = new_start[a]; c < new_start[a + 1]; ++c)
+      for (std::uint32_t o = start[a]; o < start[a + 1]; ++o) {
+        if (near[o] != new_near[c]) continue;
+        if (touching[o]) {
+          new_touch[c] = 1;
+          std::copy_n(&history[o * wd], wd, &new_hist[c * wd]);
+        }
+        break;
+      }
+  }
+  start = std::move(new_start);
+  near = std::move(new_near);
+  history = std::move(new_hist);
+  touching = std::move(new_touch);
 }
 
 void PairList::rebuild(const CandidatePairs& c, const Particles& p, int n_materials) {

@@ -47,18 +47,20 @@ struct PairList {
   void rebuild(const CandidatePairs& c, const Particles& p, int n_materials);
 };
 
-// Per particle and wall: history slots and a touching flag, plus a Verlet list of the walls within
-// radius + skin of each particle (most particles have none, so the wall pass costs nearly nothing).
+// Per particle: a Verlet list of the walls within radius + skin (most particles have none, so the wall
+// pass costs nearly nothing), and per listed (particle, wall) candidate its history slots and touching
+// flag, stored in list order: the wall pass reads them as one stream, not as scattered slots of an
+// all-particles x all-walls table. Carried over at each rebuild, like the pair history.
 struct WallContacts {
   int width = 0;
   int walls = 0;
-  std::vector<double> history;           // (particle * walls + wall) * width
-  std::vector<std::uint32_t> touching;   // particle * walls + wall (not uint8: char stores alias)
   std::vector<std::uint32_t> start;      // CSR: candidate walls of particle p are near[start[p] .. start[p+1])
   std::vector<std::uint16_t> near;
+  std::vector<double> history;           // candidate c: [c * width, (c + 1) * width)
+  std::vector<std::uint32_t> touching;   // per candidate (not uint8: char stores alias)
   void resize(std::size_t particles, int n_walls, int history_width);
-  // Rebuilds the candidate lists at time t (walls at their positions then); clears the history of
-  // particle-wall slots that are no longer candidates.
+  // Rebuilds the candidate lists at time t (walls at their positions then), carrying over the history of
+  // candidates that stay; a (particle, wall) that is no longer a candidate is not touching, so it has none.
   void rebuild(const std::vector<Wall>& walls, const Particles& p, double t, double skin);
 };
 
@@ -115,11 +117,10 @@ inline void wall_forces_one(const std::vector<typename Law::Params>& table, cons
                             WallContacts& wc, std::size_t a, Vec3& f, Vec3& t, double& roll) {
   const bool rot = p.has_rotation;
   const bool constant_roll = ctx.rolling == RollingLaw::constant_torque;
-  const int nw = wc.walls;
   const int w = wc.width;
   for (std::uint32_t c = wc.start[a]; c < wc.start[a + 1]; ++c) {
     const int k = wc.near[c];
-    const std::size_t slot = a * static_cast<std::size_t>(nw) + static_cast<std::size_t>(k);
+    const std::size_t slot = c;
     double* hist = w ? &wc.history[slot * static_cast<std::size_t>(w)] : nullptr;
     Vec3 n_to_wall;
     const double dist = !ws.active[k] ? 1e300
