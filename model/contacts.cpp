@@ -17,7 +17,7 @@ namespace {
 // the candidates of a settled bed are not touching; a mixed loop mispredicted the "touching?" branch.
 constexpr long kChunk = 256;
 
-// Direct = false: one output per touching pair (gathered afterwards, in parallel). Direct = true (one
+// Direct = false: each touching pair writes its two gather slots (summed afterwards, in parallel). Direct = true (one
 // thread): the forces are added to the particles in ascending pair order right away, which is exactly the
 // order the gather uses (its CSR lists each particle's pairs in ascending order), so both give the same bits.
 template <class Law, bool Direct>
@@ -41,9 +41,13 @@ void pair_chunk(const std::vector<typename Law::Params>& table, const StepContex
     sep2[m] = dist2;
     rsums[m] = rsum;
     m += touch;
-    // Not touching: forget the springs (a new contact starts from zero displacement). The force slots are
-    // left stale: the gather skips pairs that are not touching.
-    if (!touch && L.touching[k]) std::fill_n(&L.history[static_cast<std::size_t>(k) * w], w, 0.0);
+    // Not touching: forget the springs (a new contact starts from zero displacement) and clear the pair's
+    // gather slots (the gather adds every slot of a particle).
+    if (!touch && L.touching[k]) {
+      std::fill_n(&L.history[static_cast<std::size_t>(k) * w], w, 0.0);
+      L.slots[L.slot_i[k]] = PairList::Slot{};
+      L.slots[L.slot_j[k]] = PairList::Slot{};
+    }
     L.touching[k] = touch;
   }
   for (long q = 0; q < m; ++q) {
@@ -82,15 +86,17 @@ void pair_chunk(const std::vector<typename Law::Params>& table, const StepContex
         }
       }
     } else {
-      PairList::Out& o = L.out[k];
-      o.force_i = r.force_i;
+      PairList::Slot& oi = L.slots[L.slot_i[k]];
+      PairList::Slot& oj = L.slots[L.slot_j[k]];
+      oi.f = r.force_i;
+      oj.f = -r.force_i;
       if (rot) {
         const Vec3 nxt = cross(g.n, r.tangential_i);
-        o.torque_i = nxt * arm_a + r.rolling_torque_i;
-        o.torque_j = nxt * arm_b - r.rolling_torque_i;
+        oi.t = nxt * arm_a + r.rolling_torque_i;
+        oj.t = nxt * arm_b - r.rolling_torque_i;
         if (constant_roll) {
-          o.roll_i = prm.rolling_friction * r.normal_force * arm_a;
-          o.roll_j = prm.rolling_friction * r.normal_force * arm_b;
+          oi.roll = prm.rolling_friction * r.normal_force * arm_a;
+          oj.roll = prm.rolling_friction * r.normal_force * arm_b;
         }
       }
     }
@@ -217,7 +223,9 @@ void PairList::rebuild(const CandidatePairs& c, const Particles& p, int n_materi
   j = c.j;
   history = std::move(new_hist);
   touching = std::move(new_touch);
-  out.resize(n);
+  slots.assign(2 * n, Slot{});
+  slot_i.resize(n);
+  slot_j.resize(n);
   // CSR per particle, entries in ascending pair order.
   const std::size_t np = p.size();
   start.assign(np + 1, 0);
@@ -229,8 +237,10 @@ void PairList::rebuild(const CandidatePairs& c, const Particles& p, int n_materi
   entry.resize(2 * n);
   std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
   for (std::size_t k = 0; k < n; ++k) {
-    entry[fill[i[k]]++] = static_cast<std::uint32_t>(2 * k);
-    entry[fill[j[k]]++] = static_cast<std::uint32_t>(2 * k + 1);
+    slot_i[k] = fill[i[k]]++;
+    slot_j[k] = fill[j[k]]++;
+    entry[slot_i[k]] = static_cast<std::uint32_t>(2 * k);
+    entry[slot_j[k]] = static_cast<std::uint32_t>(2 * k + 1);
   }
 }
 

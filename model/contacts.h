@@ -30,17 +30,22 @@ struct PairList {
   std::vector<double> r_star, m_star;
   std::vector<std::uint32_t> law_index;  // material[i] * n_materials + material[j]: the law table entry
   std::vector<double> history;         // width per pair
-  // What a touching pair contributes, packed together so the gather reads one or two cache lines per
-  // pair (stale for pairs not touching: the gather skips them).
-  struct Out {
-    Vec3 force_i;            // N, on i (j gets minus)
-    Vec3 torque_i, torque_j; // N.m (rotation only)
-    double roll_i, roll_j;   // N.m, constant-torque rolling capacity (rotation only)
-  };
-  std::vector<Out> out;
   std::vector<std::uint32_t> touching;  // 0/1; not uint8: a char store may alias anything and forces reloads
-  // CSR: for particle p, entries [start[p], start[p+1]) of `entry` = pair * 2 + (0 if p is i, 1 if j).
+  // CSR: for particle p, entries [start[p], start[p+1]) of `entry` = pair * 2 + (0 if p is i, 1 if j),
+  // in ascending pair order.
   std::vector<std::uint32_t> start, entry;
+  // What a pair contributes to one of its particles, stored at that particle's CSR entry (slot_i[k],
+  // slot_j[k] for pair k), so that the gather of several threads reads each particle's contributions as
+  // one contiguous run. j's force is stored negated: f + (-F) is exactly f - F. Slots of pairs that are
+  // not touching hold zeros (cleared when a contact opens and at rebuilds); adding +0 leaves a sum that
+  // started at +0 unchanged, so the gather equals the one-thread sum bit for bit.
+  struct Slot {
+    Vec3 f;            // N
+    Vec3 t;            // N.m (rotation only)
+    double roll = 0.0; // N.m, constant-torque rolling capacity (rotation only)
+  };
+  std::vector<Slot> slots;
+  std::vector<std::uint32_t> slot_i, slot_j;
 
   std::size_t size() const { return i.size(); }
   // Replaces the pairs by `c`, carrying over the history of pairs present before.
@@ -72,32 +77,23 @@ struct StepContext {
 };
 
 // Pair forces. direct = true (one thread): summed straight into p.f / p.torque / p.rolling_capacity
-// (overwriting them) in ascending pair order. direct = false: one output per touching pair in pairs.out,
-// to be summed per particle by gather_one() (the same order, so the same bits). The law is chosen once
-// here with std::visit.
+// (overwriting them) in ascending pair order. direct = false: each touching pair writes its two gather
+// slots (pairs.slots), summed per particle by gather_one() (the same order, so the same bits). The law is
+// chosen once here with std::visit.
 void compute_pair_forces(const LawTable& laws, const StepContext& ctx, Particles& p, PairList& pairs, bool direct);
 
-// Sum of the pair outputs of particle a in ascending pair order (the order the direct pass adds them in).
+// Sum of the pair contributions of particle a in ascending pair order (the order the direct pass adds
+// them in).
 inline void gather_one(const PairList& L, std::size_t a, bool rot, Vec3& f, Vec3& t, double& roll) {
   f = Vec3{};
   t = Vec3{};
   roll = 0.0;
   for (std::uint32_t e = L.start[a]; e < L.start[a + 1]; ++e) {
-    const std::uint32_t k = L.entry[e] >> 1;
-    if (!L.touching[k]) continue;
-    const PairList::Out& o = L.out[k];
-    if ((L.entry[e] & 1u) == 0) {
-      f += o.force_i;
-      if (rot) {
-        t += o.torque_i;
-        roll += o.roll_i;
-      }
-    } else {
-      f -= o.force_i;
-      if (rot) {
-        t += o.torque_j;
-        roll += o.roll_j;
-      }
+    const PairList::Slot& o = L.slots[e];
+    f += o.f;
+    if (rot) {
+      t += o.t;
+      roll += o.roll;
     }
   }
 }
