@@ -25,6 +25,10 @@ void pair_chunk(const std::vector<typename Law::Params>& table, const StepContex
                 long k0, long k1) {
   const bool rot = p.has_rotation;
   const bool constant_roll = ctx.rolling == RollingLaw::constant_torque;
+  // Only the elastic-plastic law reads the relative rotation and returns a rolling torque. Without it the
+  // torque terms skip "+ 0": x + (+0) differs from x only for x = -0, and a torque sum that starts at +0
+  // never becomes -0 (round to nearest), so adding -0 or +0 to it gives the same bits.
+  const bool spring_roll = ctx.rolling == RollingLaw::elastic_plastic;
   const int w = L.width;
   std::uint32_t idx[kChunk];
   Vec3 sep[kChunk];
@@ -67,7 +71,7 @@ void pair_chunk(const std::vector<typename Law::Params>& table, const StepContex
     if (rot) {
       // omega_b x (-arm_b n) - omega_a x (arm_a n) = -(arm_a omega_a + arm_b omega_b) x n: one cross.
       g.v_rel -= cross(p.omega[a] * arm_a + p.omega[b] * arm_b, g.n);
-      g.w_rel = p.omega[a] - p.omega[b];
+      if (spring_roll) g.w_rel = p.omega[a] - p.omega[b];
     }
     g.arm_i = arm_a;
     g.dt = ctx.dt;
@@ -78,8 +82,8 @@ void pair_chunk(const std::vector<typename Law::Params>& table, const StepContex
       p.f[b] -= r.force_i;
       if (rot) {
         const Vec3 nxt = cross(g.n, r.tangential_i);  // (arm n) x F_t = arm (n x F_t): one cross per pair
-        p.torque[a] += nxt * arm_a + r.rolling_torque_i;
-        p.torque[b] += nxt * arm_b - r.rolling_torque_i;
+        p.torque[a] += spring_roll ? nxt * arm_a + r.rolling_torque_i : nxt * arm_a;
+        p.torque[b] += spring_roll ? nxt * arm_b - r.rolling_torque_i : nxt * arm_b;
         if (constant_roll) {
           p.rolling_capacity[a] += prm.rolling_friction * r.normal_force * arm_a;
           p.rolling_capacity[b] += prm.rolling_friction * r.normal_force * arm_b;
@@ -92,8 +96,8 @@ void pair_chunk(const std::vector<typename Law::Params>& table, const StepContex
       oj.f = -r.force_i;
       if (rot) {
         const Vec3 nxt = cross(g.n, r.tangential_i);
-        oi.t = nxt * arm_a + r.rolling_torque_i;
-        oj.t = nxt * arm_b - r.rolling_torque_i;
+        oi.t = spring_roll ? nxt * arm_a + r.rolling_torque_i : nxt * arm_a;
+        oj.t = spring_roll ? nxt * arm_b - r.rolling_torque_i : nxt * arm_b;
         if (constant_roll) {
           oi.roll = prm.rolling_friction * r.normal_force * arm_a;
           oj.roll = prm.rolling_friction * r.normal_force * arm_b;
