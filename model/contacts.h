@@ -6,10 +6,12 @@
 // Both passes are parallel over independent outputs, so the result is bitwise the same for any number of
 // threads. Wall contacts are computed per particle (a particle owns its wall contacts), in wall order.
 //
-// History (tangential spring, rolling spring) is keyed by the sorted pair of particle ids and carried
-// from the old list to the new one at every neighbour rebuild, so a lasting contact keeps its spring.
+// History (tangential spring, rolling spring) belongs to the pair of particles (dense indices, stable for
+// the whole run) and is carried from the old list to the new one at every neighbour rebuild, so a lasting
+// contact keeps its spring.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -23,40 +25,47 @@ namespace pastemix::model {
 struct PairList {
   int width = 0;                       // history doubles per contact
   std::vector<std::uint32_t> i, j;     // dense indices
-  std::vector<std::uint64_t> key;      // (min id << 32) | max id
   // R* = R_i R_j / (R_i + R_j) (m) and m* = m_i m_j / (m_i + m_j) (kg) per pair, computed once per rebuild
   // with the same expressions the pair pass used (so the same bits): two divisions less per contact.
   std::vector<double> r_star, m_star;
+  std::vector<std::uint32_t> law_index;  // material[i] * n_materials + material[j]: the law table entry
   std::vector<double> history;         // width per pair
-  // What a touching pair contributes, packed together so the gather reads one or two cache lines per
-  // pair (stale for pairs not touching: the gather skips them).
-  struct Out {
-    Vec3 force_i;            // N, on i (j gets minus)
-    Vec3 torque_i, torque_j; // N.m (rotation only)
-    double roll_i, roll_j;   // N.m, constant-torque rolling capacity (rotation only)
-  };
-  std::vector<Out> out;
   std::vector<std::uint32_t> touching;  // 0/1; not uint8: a char store may alias anything and forces reloads
-  // CSR: for particle p, entries [start[p], start[p+1]) of `entry` = pair * 2 + (0 if p is i, 1 if j).
+  // CSR: for particle p, entries [start[p], start[p+1]) of `entry` = pair * 2 + (0 if p is i, 1 if j),
+  // in ascending pair order.
   std::vector<std::uint32_t> start, entry;
+  // What a pair contributes to one of its particles, stored at that particle's CSR entry (slot_i[k],
+  // slot_j[k] for pair k), so that the gather of several threads reads each particle's contributions as
+  // one contiguous run. j's force is stored negated: f + (-F) is exactly f - F. Slots of pairs that are
+  // not touching hold zeros (cleared when a contact opens and at rebuilds); adding +0 leaves a sum that
+  // started at +0 unchanged, so the gather equals the one-thread sum bit for bit.
+  struct Slot {
+    Vec3 f;            // N
+    Vec3 t;            // N.m (rotation only)
+    double roll = 0.0; // N.m, constant-torque rolling capacity (rotation only)
+  };
+  std::vector<Slot> slots;
+  std::vector<std::uint32_t> slot_i, slot_j;
 
   std::size_t size() const { return i.size(); }
   // Replaces the pairs by `c`, carrying over the history of pairs present before.
-  void rebuild(const CandidatePairs& c, const Particles& p);
+  void rebuild(const CandidatePairs& c, const Particles& p, int n_materials);
 };
 
-// Per particle and wall: history slots and a touching flag, plus a Verlet list of the walls within
-// radius + skin of each particle (most particles have none, so the wall pass costs nearly nothing).
+// Per particle: a Verlet list of the walls within radius + skin (most particles have none, so the wall
+// pass costs nearly nothing), and per listed (particle, wall) candidate its history slots and touching
+// flag, stored in list order: the wall pass reads them as one stream, not as scattered slots of an
+// all-particles x all-walls table. Carried over at each rebuild, like the pair history.
 struct WallContacts {
   int width = 0;
   int walls = 0;
-  std::vector<double> history;           // (particle * walls + wall) * width
-  std::vector<std::uint32_t> touching;   // particle * walls + wall (not uint8: char stores alias)
   std::vector<std::uint32_t> start;      // CSR: candidate walls of particle p are near[start[p] .. start[p+1])
   std::vector<std::uint16_t> near;
+  std::vector<double> history;           // candidate c: [c * width, (c + 1) * width)
+  std::vector<std::uint32_t> touching;   // per candidate (not uint8: char stores alias)
   void resize(std::size_t particles, int n_walls, int history_width);
-  // Rebuilds the candidate lists at time t (walls at their positions then); clears the history of
-  // particle-wall slots that are no longer candidates.
+  // Rebuilds the candidate lists at time t (walls at their positions then), carrying over the history of
+  // candidates that stay; a (particle, wall) that is no longer a candidate is not touching, so it has none.
   void rebuild(const std::vector<Wall>& walls, const Particles& p, double t, double skin);
 };
 
@@ -67,14 +76,80 @@ struct StepContext {
   RollingLaw rolling = RollingLaw::none;
 };
 
-// Pair forces, summed into p.f / p.torque / p.rolling_capacity (overwriting them); the law is chosen once
-// here with std::visit. With several threads: one output per pair, then gather_pair_forces; with one
-// thread the sums are made directly in the same order (bitwise the same result, no second pass).
-void compute_pair_forces(const LawTable& laws, const StepContext& ctx, Particles& p, PairList& pairs);
-// Sums pair forces into p.f / p.torque / p.rolling_capacity (overwrites them).
-void gather_pair_forces(const PairList& pairs, Particles& p);
-// Adds wall forces into p.f / p.torque / p.rolling_capacity.
-void add_wall_forces(const LawTable& laws, const StepContext& ctx, const std::vector<Wall>& walls,
-                     Particles& p, WallContacts& wc);
+// Pair forces. direct = true (one thread): summed straight into p.f / p.torque / p.rolling_capacity
+// (overwriting them) in ascending pair order. direct = false: each touching pair writes its two gather
+// slots (pairs.slots), summed per particle by gather_one() (the same order, so the same bits). The law is
+// chosen once here with std::visit.
+void compute_pair_forces(const LawTable& laws, const StepContext& ctx, Particles& p, PairList& pairs, bool direct);
+
+// Sum of the pair contributions of particle a in ascending pair order (the order the direct pass adds
+// them in).
+inline void gather_one(const PairList& L, std::size_t a, bool rot, Vec3& f, Vec3& t, double& roll) {
+  f = Vec3{};
+  t = Vec3{};
+  roll = 0.0;
+  for (std::uint32_t e = L.start[a]; e < L.start[a + 1]; ++e) {
+    const PairList::Slot& o = L.slots[e];
+    f += o.f;
+    if (rot) {
+      t += o.t;
+      roll += o.roll;
+    }
+  }
+}
+
+// The walls at the time the forces are evaluated, computed once per step.
+struct WallState {
+  std::vector<Vec3> shift, vel, origin;
+  std::vector<char> active, rect;
+  void update(const std::vector<Wall>& walls, double t);
+};
+
+// Wall forces of particle a added to f / t / roll, its candidate walls in wall order. Inline: the World
+// calls it inside its fused per-particle pass (forces, then the kick), one loop over the particles.
+template <class Law>
+inline void wall_forces_one(const std::vector<typename Law::Params>& table, const StepContext& ctx,
+                            const std::vector<Wall>& walls, const WallState& ws, const Particles& p,
+                            WallContacts& wc, std::size_t a, Vec3& f, Vec3& t, double& roll) {
+  const bool rot = p.has_rotation;
+  const bool constant_roll = ctx.rolling == RollingLaw::constant_torque;
+  const int w = wc.width;
+  for (std::uint32_t c = wc.start[a]; c < wc.start[a + 1]; ++c) {
+    const int k = wc.near[c];
+    const std::size_t slot = c;
+    double* hist = w ? &wc.history[slot * static_cast<std::size_t>(w)] : nullptr;
+    Vec3 n_to_wall;
+    const double dist = !ws.active[k] ? 1e300
+                        : ws.rect[k]  ? rectangle_distance(walls[k], ws.origin[k], p.x[a], &n_to_wall)
+                                      : wall_distance(walls[k], ws.shift[k], p.x[a], &n_to_wall);
+    const double overlap = p.radius[a] - dist;
+    if (overlap <= 0.0) {
+      if (wc.touching[slot]) std::fill(hist, hist + w, 0.0);
+      wc.touching[slot] = 0;
+      continue;
+    }
+    wc.touching[slot] = 1;
+    typename Law::Geometry g;
+    g.n = n_to_wall;
+    g.overlap = overlap;
+    const double arm = std::max(dist, 0.0);
+    g.R_star = p.radius[a];
+    g.m_star = p.mass[a];
+    g.v_rel = ws.vel[k] - p.v[a];
+    if (rot) {
+      g.v_rel -= cross(p.omega[a], g.n * arm);
+      g.w_rel = p.omega[a];
+    }
+    g.arm_i = arm;
+    g.dt = ctx.dt;
+    const auto& prm = table[static_cast<std::size_t>(p.material[a] * ctx.n_materials + walls[k].material)];
+    const auto r = Law::force(prm, g, hist, w);
+    f += r.force_i;
+    if (rot) {
+      t += cross(g.n * arm, r.tangential_i) + r.rolling_torque_i;
+      if (constant_roll) roll += prm.rolling_friction * r.normal_force * arm;
+    }
+  }
+}
 
 }  // namespace pastemix::model

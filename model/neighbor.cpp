@@ -27,6 +27,10 @@ struct Level {
   double rmax = 0.0, cell = 0.0, inv = 0.0;
   long dim[3] = {1, 1, 1};
   std::vector<std::uint32_t> start, sorted;
+  // Positions and radii in cell order: the search scans them contiguously (the same pairs in the same order
+  // as through `sorted`, fewer cache misses).
+  std::vector<Vec3> xs;
+  std::vector<double> rs;
 
   long clamp_cell(double v, int axis) const {
     return std::clamp(static_cast<long>(std::floor(v * inv)), 0L, dim[axis] - 1);
@@ -102,6 +106,14 @@ CandidatePairs build_pairs(const std::vector<Vec3>& x, const std::vector<double>
       const auto l = static_cast<std::size_t>(level_of[k]);
       lev[l].sorted[fill[l][cell_id[k]]++] = static_cast<std::uint32_t>(k);
     }
+    for (Level& L : lev) {
+      L.xs.resize(L.sorted.size());
+      L.rs.resize(L.sorted.size());
+      for (std::size_t s = 0; s < L.sorted.size(); ++s) {
+        L.xs[s] = x[L.sorted[s]];
+        L.rs[s] = radius[L.sorted[s]];
+      }
+    }
   }
 
   const int nthreads = static_cast<long>(n) >= parallel_min_items ? omp_get_max_threads() : 1;
@@ -109,9 +121,10 @@ CandidatePairs build_pairs(const std::vector<Vec3>& x, const std::vector<double>
 #pragma omp parallel num_threads(nthreads)
   {
     CandidatePairs& mine = local[static_cast<std::size_t>(omp_get_thread_num())];
-    auto test = [&](std::size_t a, std::uint32_t b, double ra) {
-      const double cut = ra + radius[b];
-      if (norm2(x[b] - x[a]) < cut * cut) {
+    auto test = [&](std::size_t a, const Vec3& xa, const Level& L, std::uint32_t s, double ra) {
+      const std::uint32_t b = L.sorted[s];
+      const double cut = ra + L.rs[s];
+      if (norm2(L.xs[s] - xa) < cut * cut) {
         mine.i.push_back(static_cast<std::uint32_t>(std::min<std::size_t>(a, b)));
         mine.j.push_back(static_cast<std::uint32_t>(std::max<std::size_t>(a, b)));
       }
@@ -120,7 +133,8 @@ CandidatePairs build_pairs(const std::vector<Vec3>& x, const std::vector<double>
     for (std::size_t a = 0; a < n; ++a) {
       const int la = level_of[a];
       const double ra = radius[a] + skin;
-      const Vec3 rel = x[a] - lo;
+      const Vec3 xa = x[a];
+      const Vec3 rel = xa - lo;
       // Own level: half stencil (own cell with higher indices, then the 13 "forward" cells); each pair
       // of the level is found once.
       {
@@ -131,9 +145,8 @@ CandidatePairs build_pairs(const std::vector<Vec3>& x, const std::vector<double>
           if (cx < 0 || cx >= L.dim[0] || cy < 0 || cy >= L.dim[1] || cz < 0 || cz >= L.dim[2]) continue;
           const std::size_t cc = L.index(cx, cy, cz);
           for (std::uint32_t s = L.start[cc]; s < L.start[cc + 1]; ++s) {
-            const std::uint32_t b = L.sorted[s];
-            if (o == 0 && b <= a) continue;
-            test(a, b, ra);
+            if (o == 0 && L.sorted[s] <= a) continue;
+            test(a, xa, L, s, ra);
           }
         }
       }
@@ -149,7 +162,7 @@ CandidatePairs build_pairs(const std::vector<Vec3>& x, const std::vector<double>
           for (long cy = y0; cy <= y1; ++cy)
             for (long cx = x0; cx <= x1; ++cx) {
               const std::size_t cc = L.index(cx, cy, cz);
-              for (std::uint32_t s = L.start[cc]; s < L.start[cc + 1]; ++s) test(a, L.sorted[s], ra);
+              for (std::uint32_t s = L.start[cc]; s < L.start[cc + 1]; ++s) test(a, xa, L, s, ra);
             }
       }
     }

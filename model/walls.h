@@ -14,6 +14,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <string>
 #include <vector>
@@ -32,6 +33,7 @@ struct Wall {
   Vec3 normal;         // plane: unit normal towards the particles
   Vec3 u, v;           // rectangle: half-axes (m)
   double inv_u2 = 0.0, inv_v2 = 0.0;  // rectangle: 1/|u|^2, 1/|v|^2 (1/m2), set by finish(); 0 = compute
+  Vec3 unit_normal;    // rectangle: u x v / |u x v|, set by finish() (zero = unknown)
   double r0 = 0, z0 = 0, r1 = 0, z1 = 0;  // revolution: meridian segment (m)
   Vec3 velocity;       // m/s, prescribed translation while move_start <= t < move_end
   double move_start = 0.0;  // s
@@ -44,6 +46,8 @@ struct Wall {
     if (kind == WallKind::rectangle) {
       inv_u2 = 1.0 / norm2(u);
       inv_v2 = 1.0 / norm2(v);
+      const Vec3 c = cross(u, v);
+      unit_normal = c * (1.0 / norm(c));
     }
   }
   // Displacement since t = 0 (m) and current velocity (m/s).
@@ -55,6 +59,13 @@ struct Wall {
 // the unit vector `n` from the point towards the wall. For a plane the distance is signed (negative
 // behind it). Used by contacts, insertion and scene checks.
 double wall_distance(const Wall& w, const Vec3& shift, const Vec3& p, Vec3* n_to_wall);
+
+// A cheap lower bound of wall_distance (m): the distance to a rectangle's plane (0 if unknown). The wall
+// list rebuild skips the exact distance when the bound already rules a wall out.
+inline double wall_distance_bound(const Wall& w, const Vec3& shift, const Vec3& p) {
+  if (w.kind != WallKind::rectangle) return 0.0;
+  return std::abs(dot(p - (w.origin + shift), w.unit_normal));
+}
 
 // The rectangle case of wall_distance, inline for the wall force pass (the box walls of most scenes),
 // with the shifted centre `o` = origin + shift computed once per step by the caller. Same expressions,

@@ -16,11 +16,13 @@
 
 namespace pastemix::model {
 
-// Wall-clock seconds spent per stage (the order is the order of the step).
+// Wall-clock seconds spent per stage (the order is the order of the step): kick_drift = first half kick
+// and drift; neighbor = list rebuilds; contact_forces = the pair pass; walls_kick = the fused per-particle
+// pass (gather of the pair forces, wall forces, closing half kick, and the fluid update before it).
 struct Profile {
-  enum Stage { neighbor, contact_forces, wall_forces, integration, output, count };
-  static constexpr std::array<const char*, count> names{"neighbor", "contact_forces", "wall_forces",
-                                                        "integration", "output"};
+  enum Stage { kick_drift, neighbor, contact_forces, walls_kick, output, count };
+  static constexpr std::array<const char*, count> names{"kick_drift", "neighbor", "contact_forces",
+                                                        "walls_kick", "output"};
   std::array<double, count> seconds{};
   long rebuilds = 0;
 };
@@ -76,15 +78,13 @@ class World {
   const Profile& profile() const { return profile_; }
 
  private:
-  void compute_forces();
   void rebuild_neighbors();
-  void rebuild_wall_lists();
-  struct Displacements {
-    double pairs2 = 0.0, walls2 = 0.0;  // m2, largest squared displacement since each list's build
-  };
+  // Pair forces (stage contact_forces), then one fused pass over the particles (stage wall_forces):
+  // gather of the pair forces (several threads), wall forces, and with kick = true the closing half kick.
+  void forces(double h, bool kick);
   void kick_one(long a, double h, bool rot, bool roll);
-  void kick(double h);
-  Displacements kick_drift(double h);
+  // First half kick and drift; returns the largest squared displacement since the last rebuild (m2).
+  double kick_drift(double h);
 
   WorldConfig cfg_;
   std::vector<Material> materials_;
@@ -93,11 +93,11 @@ class World {
   std::vector<Wall> walls_;
   PairList pairs_;
   WallContacts wall_contacts_;
-  std::vector<Vec3> x_at_rebuild_, x_at_wall_rebuild_;
-  double wall_skin_ = 0.0;  // m
+  WallState wall_state_;
+  std::vector<Vec3> x_at_rebuild_;
   Profile profile_;
   double t_ = 0.0;
-  double t_at_wall_rebuild_ = 0.0;
+  double t_at_rebuild_ = 0.0;
   long steps_ = 0;
   bool started_ = false;
   // First problem found during a step (dense index, or -1) and its cause, reported by check().

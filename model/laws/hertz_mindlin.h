@@ -24,6 +24,7 @@ namespace pastemix::model {
 
 struct HertzMindlin {
   struct Params {
+    using Law = HertzMindlin;  // lets a visitor of LawTable name the law of a table
     double E_star = 0.0;         // Pa, effective Young's modulus
     double G_star = 0.0;         // Pa, effective shear modulus
     double damping = 0.0;        // -, -2 sqrt(5/6) beta >= 0 (0 when e = 1)
