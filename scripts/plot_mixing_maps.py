@@ -85,9 +85,10 @@ def plot_maps(h5_path, out_dir):
         title = f"Model mixing map: {a['result_file']} (seed {a['seed']}, snapshot {a['snapshot']})"
         note = (f"Surface z = {a['surface_z_m']:.4g} m ({a['surface_z_source']}); paste {a['paste_density_kg_m3']:g} "
                 f"kg/m3, solids {a['solids_fraction']:g}; K = {a['K_kg_m3']:g} kg/m3 ({a['K_source']}). "
-                f"Rock: poured {acc['poured_kg'] * 1e3:.1f} g, unmixed (above the surface, in no block) "
-                f"{acc['above_surface_kg'] * 1e3:.1f} g, in blocks {acc['in_blocks_kg'] * 1e3:.1f} g, outside the grid "
-                f"{(acc['below_grid_kg'] + acc['beside_grid_kg']) * 1e3:.1f} g.")
+                f"Rock: poured {acc['poured_kg'] * 1e3:.1f} g, unmixed (above the surface"
+                f"{', counted in layer 1' if int(g.get('top_open', 0)) else ', in no block'}) "
+                f"{acc['above_surface_kg'] * 1e3:.1f} g, in blocks {acc['in_blocks_kg'] * 1e3:.1f} g, outside the blocks "
+                f"{(acc['below_grid_kg'] + acc['beside_grid_kg'] + acc.get('above_uncounted_kg', 0.0)) * 1e3:.1f} g.")
     norm = Normalize(0, 100)
     fig, axes = plt.subplots(2, nk, figsize=(4.5 * nk, 8.2), squeeze=False)
     fig.subplots_adjust(left=0.05, right=0.9, bottom=0.1, top=0.83, wspace=0.22, hspace=0.38)
