@@ -51,7 +51,7 @@ void FluidField::update(const Particles& p) {
     region_of_.assign(n, -1);
     v_sub_.assign(n, 0.0);
     members_.clear();
-    stale_ = true;
+    stale_ = listed;
   }
   if (listed) {
     for (std::size_t k = 0; k < surface_.size() && !stale_; ++k)
@@ -60,7 +60,8 @@ void FluidField::update(const Particles& p) {
     for (long a : members_) region_of_[static_cast<std::size_t>(a)] = -1, v_sub_[static_cast<std::size_t>(a)] = 0.0;
   }
   members_.clear();
-  std::vector<double> wet(regions_.size(), 0.0);
+  std::vector<double>& wet = wet_;  // reused: no allocation per step
+  wet.assign(regions_.size(), 0.0);
   auto visit = [&](std::size_t a) {
     const Vec3& x = p.x[a];
     for (std::size_t k = 0; k < regions_.size(); ++k) {

@@ -84,6 +84,7 @@ class FluidField {
   bool stale_ = true;
   std::vector<long> candidates_, members_;  // ascending particle indices
   std::vector<double> surface_at_refresh_;  // m, per region
+  std::vector<double> wet_;                 // m3 per region, scratch of update()
   void refresh(const Particles& p);
 };
 
