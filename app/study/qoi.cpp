@@ -5,6 +5,8 @@
 #include <array>
 #include <cmath>
 
+#include <fmt/format.h>
+
 #include "analysis/pile/repose_angle.h"
 #include "base/error.h"
 
@@ -45,8 +47,38 @@ double top_height(const World& w) {
   return m;
 }
 
+// A repose angle is only a measurement of a finished pile: every sphere has left the funnel (or lifted
+// cylinder) and the pile is at rest. A sphere whose centre is inside an active surface of revolution (above
+// its lowest rim, within its largest radius) is still in the funnel; more than 1 % of the spheres faster than
+// 0.05 m/s (5x the lift speed) means the pile is still flowing. Either is a failure, never an angle.
+void check_pile_finished(const World& w) {
+  const auto& p = w.particles();
+  for (const auto& wall : w.walls()) {
+    if (wall.kind != model::WallKind::revolution || !wall.active(w.time())) continue;
+    const model::Vec3 o = wall.origin + wall.displacement(w.time());
+    const double z_lo = o.z + std::min(wall.z0, wall.z1), r_hi = std::max(wall.r0, wall.r1);
+    std::size_t inside = 0;
+    for (std::size_t a = 0; a < p.size(); ++a) {
+      const double dx = p.x[a].x - o.x, dy = p.x[a].y - o.y;
+      if (p.x[a].z > z_lo && dx * dx + dy * dy < r_hi * r_hi) ++inside;
+    }
+    if (inside > 0)
+      throw RuntimeFailure(fmt::format("repose angle: {} of {} spheres are still inside wall '{}' at t = {:g} s "
+                                       "(its lower rim at z = {:.4f} m): the pile is not finished; run longer",
+                                       inside, p.size(), wall.name, w.time(), z_lo));
+  }
+  std::size_t moving = 0;
+  for (std::size_t a = 0; a < p.size(); ++a)
+    if (norm2(p.v[a]) > 0.05 * 0.05) ++moving;
+  if (moving * 100 > p.size())
+    throw RuntimeFailure(fmt::format("repose angle: {} of {} spheres still move faster than 0.05 m/s at t = {:g} s: "
+                                     "the pile is not at rest; run longer",
+                                     moving, p.size(), w.time()));
+}
+
 // analysis/pile/repose_angle.h on the final state, pile axis = mass centre, base z = 0 (the floor).
 double repose_angle(const World& w) {
+  check_pile_finished(w);
   const auto& p = w.particles();
   std::vector<std::array<double, 3>> x(p.size());
   for (std::size_t a = 0; a < p.size(); ++a) x[a] = {p.x[a].x, p.x[a].y, p.x[a].z};
