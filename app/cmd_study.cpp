@@ -37,6 +37,8 @@ void register_study_commands(CLI::App& app) {
   s->add_option("--set", opts->sets, "scene override key.path=value applied before the ladder");
   s->add_option("--out", opts->o.out, "output folder (default sweep_out)");
   s->add_flag("--quiet", opts->o.quiet, "no per-run lines");
+  s->add_flag("--fixed-dt", opts->o.fixed_dt, "psd_cut: keep the scene's time step (default: dt follows the smallest d_min)");
+  s->add_option("--jobs", opts->o.jobs, "runs at once, one thread each (default 1: one run with the OpenMP threads)");
   s->callback([opts] {
     model::SceneDoc base = model::SceneDoc::parse_file(opts->scene);
     for (const auto& a : opts->sets) base.apply(a);

@@ -2,10 +2,16 @@
 #include "app/study/sweep.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <mutex>
+#include <optional>
 #include <sstream>
+#include <thread>
+
+#include <omp.h>
 
 #include <fmt/format.h>
 #include <toml++/toml.h>
@@ -25,6 +31,19 @@ std::string material_name(const model::SceneDoc& d, const SweepOptions& o) {
 }
 
 toml::array* factories(model::SceneDoc& d) { return d.root()["factory"].as_array(); }
+
+// Smallest interval lower sieve (m) over every [[factory]]'s PSD; 0 when no factory has one.
+double smallest_d_min(model::SceneDoc& d) {
+  double m = 0.0;
+  if (auto* fs = factories(d))
+    for (auto& f : *fs)
+      if (auto* psd = f.as_table() ? (*f.as_table())["psd"].as_array() : nullptr)
+        for (auto& i : *psd) {
+          const double v = (*i.as_table())["d_min"].value<double>().value_or(0);
+          if (v > 0 && (m == 0.0 || v < m)) m = v;
+        }
+  return m;
+}
 
 }  // namespace
 
@@ -61,6 +80,9 @@ model::SceneDoc at_value(const model::SceneDoc& base, const SweepOptions& o, dou
       }
       f.as_table()->insert_or_assign("psd", std::move(out));
     }
+    const double d0 = smallest_d_min(const_cast<model::SceneDoc&>(base)), d1 = smallest_d_min(d);
+    if (!o.fixed_dt && d0 > 0 && d1 > 0)
+      d.set("time_step", lit(std::stod(base.get("time_step")) * d1 / d0));
   } else {
     throw InputError("", 0, "--vary", "'" + o.vary + "' is not one of dt, youngs_modulus, psd_cut");
   }
@@ -98,6 +120,10 @@ RunCost run_once(const model::SceneDoc& doc, const std::string& qoi_name) {
   model::World w = model::make_world(s);
   const auto t0 = std::chrono::steady_clock::now();
   const long n = static_cast<long>(std::llround(s.end_time / s.config.dt));
+  if (n < 1)
+    throw InputError(doc.path(), 0, "time_step",
+                     fmt::format("{:g} s is longer than end_time {:g} s: the run would take no step", s.config.dt,
+                                 s.end_time));
   double best = -1e300;
   for (long k = 0; k < n; ++k) {
     w.step();
@@ -117,30 +143,81 @@ SweepResult sweep(const model::SceneDoc& base, const SweepOptions& o) {
   const std::vector<double> values = o.values.empty() ? default_ladder(base, o) : o.values;
   if (values.empty()) throw InputError(base.path(), 0, "--values", "the ladder is empty");
   const long seed0 = base.has("seed") ? std::stol(base.get("seed")) : 1;
-  for (double v : values) {
-    const model::SceneDoc d = at_value(base, o, v);
-    std::vector<double> q, wall;
-    double work = 0.0;
+  if (o.seeds > 1 && !base.has("seed"))
+    throw InputError(base.path(), 0, "seed", "--seeds > 1 needs a top-level seed key");
+  if (o.jobs < 1) throw InputError("", 0, "--jobs", "must be >= 1");
+  // Every (value, seed) run is one task; the scenes are built (and checked) before any run starts.
+  struct Task {
+    std::size_t point;
+    long seed;
+    model::SceneDoc doc;
+    std::optional<RunCost> cost;
+    std::string failure;
+  };
+  std::vector<Task> tasks;
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    const model::SceneDoc d = at_value(base, o, values[k]);
+    r.time_step.push_back(std::stod(d.get("time_step")));
     for (int s = 0; s < o.seeds; ++s) {
       model::SceneDoc ds = d;
-      if (o.seeds > 1) {
-        if (ds.has("seed")) ds.set("seed", std::to_string(seed0 + s));
-        else if (s > 0) throw InputError(base.path(), 0, "seed", "--seeds > 1 needs a top-level seed key");
-      }
-      const RunCost rc = run_once(ds, o.qoi);
-      const double qv = rc.qoi, w = rc.wall_s;
-      q.push_back(qv);
-      wall.push_back(w);
-      work += rc.work / o.seeds;
-      if (!o.quiet)
-        fmt::print(stderr, "  {} = {:.4g} seed {}: {} = {:.6g} ({} particles, {:.0f} steps, {:.2f} s)\n", o.vary, v,
-                   seed0 + s, o.qoi, qv, rc.particles, rc.work / static_cast<double>(rc.particles), w);
+      if (o.seeds > 1) ds.set("seed", std::to_string(seed0 + s));
+      tasks.push_back({k, seed0 + s, std::move(ds), std::nullopt, {}});
     }
-    const auto sq = summarize(q), sw = summarize(wall);
-    r.points.push_back({v, sq.mean, o.seeds > 1 ? sq.sd : 0.0, o.seeds, sw.mean, work});
-    r.per_seed.push_back(q);
   }
-  r.ref = reference_of(r.points, o.vary == "dt" ? 2.0 : 0.0);
+  std::atomic<std::size_t> next{0};
+  std::mutex print;
+  auto worker = [&] {
+    if (o.jobs > 1) omp_set_num_threads(1);
+    for (std::size_t i; (i = next++) < tasks.size();) {
+      Task& t = tasks[i];
+      try {
+        t.cost = run_once(t.doc, o.qoi);
+      } catch (const RuntimeFailure& e) {
+        t.failure = e.what();
+      }
+      if (o.quiet) continue;
+      std::lock_guard<std::mutex> lock(print);
+      if (t.cost)
+        fmt::print(stderr, "  {} = {:.4g} seed {}: {} = {:.6g} ({} particles, {:.0f} steps, {:.2f} s)\n", o.vary,
+                   values[t.point], t.seed, o.qoi, t.cost->qoi, t.cost->particles,
+                   t.cost->work / static_cast<double>(t.cost->particles), t.cost->wall_s);
+      else
+        fmt::print(stderr, "  {} = {:.4g} seed {}: FAILED: {}\n", o.vary, values[t.point], t.seed, t.failure);
+    }
+  };
+  {
+    std::vector<std::thread> pool;
+    for (int j = 1; j < std::min<int>(o.jobs, static_cast<int>(tasks.size())); ++j) pool.emplace_back(worker);
+    worker();
+    for (auto& th : pool) th.join();
+  }
+  std::vector<double> kept_dt;
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    std::vector<double> q, wall;
+    double work = 0.0;
+    bool ok = true;
+    for (const Task& t : tasks) {
+      if (t.point != k) continue;
+      if (!t.cost) {
+        r.failed.push_back({values[k], t.seed, t.failure});
+        ok = false;
+        continue;
+      }
+      q.push_back(t.cost->qoi);
+      wall.push_back(t.cost->wall_s);
+      work += t.cost->work / o.seeds;
+    }
+    if (!ok) continue;
+    const auto sq = summarize(q), sw = summarize(wall);
+    r.points.push_back({values[k], sq.mean, o.seeds > 1 ? sq.sd : 0.0, o.seeds, sw.mean, work});
+    r.per_seed.push_back(q);
+    kept_dt.push_back(r.time_step[k]);
+  }
+  r.time_step = kept_dt;
+  if (r.points.empty())
+    throw RuntimeFailure(fmt::format("sweep: every run failed; the first: {} = {:g} seed {}: {}", o.vary,
+                                     r.failed.front().value, r.failed.front().seed, r.failed.front().reason));
+  r.ref = reference_of(r.points, o.vary == "dt" && r.failed.empty() ? 2.0 : 0.0);
   r.choice = choose(r.points, r.ref, o.tol);
   const double cost_ref = r.points.back().work;
   std::ostringstream t;
@@ -148,14 +225,16 @@ SweepResult sweep(const model::SceneDoc& base, const SweepOptions& o) {
                    find_qoi(o.qoi).unit, o.tol, o.seeds);
   t << fmt::format("reference {} = {:.6g} from {}\n", o.qoi, r.ref.qoi, r.ref.method);
   t << "cost = particle-steps (deterministic); wall s = the step loop on this machine\n";
-  t << fmt::format("  {:>12} | {:>12} | {:>9} | {:>10} | {:>10} | {:>9} | {:>10}\n", o.vary, "QoI (mean)", "sd",
-                   "rel error", "p-steps", "wall s", "cost/finest");
+  t << fmt::format("  {:>12} | {:>9} | {:>12} | {:>9} | {:>10} | {:>10} | {:>9} | {:>10}\n", o.vary, "dt s",
+                   "QoI (mean)", "sd", "rel error", "p-steps", "wall s", "cost/finest");
   for (std::size_t k = 0; k < r.points.size(); ++k) {
     const auto& p = r.points[k];
-    t << fmt::format("  {:>12.4g} | {:>12.6g} | {:>9.3g} | {:>10.3e} | {:>10.4g} | {:>9.4f} | {:>10.4f}{}\n", p.value,
-                     p.qoi, p.qoi_sd, r.choice.rel_error[k], p.work, p.wall_s, p.work / cost_ref,
-                     static_cast<int>(k) == r.choice.index ? "  <- chosen" : "");
+    t << fmt::format("  {:>12.4g} | {:>9.3g} | {:>12.6g} | {:>9.3g} | {:>10.3e} | {:>10.4g} | {:>9.1f} | {:>10.4f}{}\n",
+                     p.value, r.time_step[k], p.qoi, p.qoi_sd, r.choice.rel_error[k], p.work, p.wall_s,
+                     p.work / cost_ref, static_cast<int>(k) == r.choice.index ? "  <- chosen" : "");
   }
+  for (const auto& f : r.failed)
+    t << fmt::format("  {:>12.4g} | FAILED (seed {}): {}\n", f.value, f.seed, f.reason);
   if (r.choice.index < 0) {
     t << "no setting is within the tolerance of the reference\n";
   } else {
@@ -186,12 +265,14 @@ void write_outputs(const SweepResult& r, const SweepOptions& o) {
   std::filesystem::create_directories(o.out);
   {
     std::ofstream c(o.out / "sweep.csv");
-    c << o.vary << ",qoi_mean,qoi_sd,seeds,rel_error,particle_steps,wall_s,cost_ratio,chosen,reference,reference_method\n";
+    c << o.vary << ",time_step,qoi_mean,qoi_sd,seeds,rel_error,particle_steps,wall_s,cost_ratio,chosen,reference,"
+                   "reference_method\n";
     for (std::size_t k = 0; k < r.points.size(); ++k) {
       const auto& p = r.points[k];
-      c << fmt::format("{:.10g},{:.10g},{:.6g},{},{:.6g},{:.6g},{:.6g},{:.6g},{},{:.10g},\"{}\"\n", p.value, p.qoi,
-                       p.qoi_sd, p.seeds, r.choice.rel_error[k], p.work, p.wall_s, p.work / r.points.back().work,
-                       static_cast<int>(k) == r.choice.index ? 1 : 0, r.ref.qoi, r.ref.method);
+      c << fmt::format("{:.10g},{:.6g},{:.10g},{:.6g},{},{:.6g},{:.6g},{:.6g},{:.6g},{},{:.10g},\"{}\"\n", p.value,
+                       r.time_step[k], p.qoi, p.qoi_sd, p.seeds, r.choice.rel_error[k], p.work, p.wall_s,
+                       p.work / r.points.back().work, static_cast<int>(k) == r.choice.index ? 1 : 0, r.ref.qoi,
+                       r.ref.method);
     }
   }
   if (!r.override_text.empty()) std::ofstream(o.out / "chosen_overrides.toml") << r.override_text;

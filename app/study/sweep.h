@@ -9,8 +9,16 @@
 //                  reduce E at all is the larger step)
 //   psd_cut        d_cut (m): every [[factory]]'s intervals with d_max <= d_cut are dropped and the rest
 //                  renormalised (base/psd.h cut_below); default values: the scene's interval lower sieves,
-//                  largest first, down to no cut (0)
+//                  largest first, down to no cut (0). The time step follows the smallest sphere kept,
+//                  dt = dt0 x d_min(cut) / d_min(scene), so every cut runs at the same fraction of its own
+//                  Rayleigh time (T_R is proportional to r), as the thesis's per-cut "optimal" steps did;
+//                  `fixed_dt` keeps dt0 instead
 // --values replaces the default ladder (given coarse -> fine).
+//
+// A run that fails (pastemix::RuntimeFailure: a blow-up, a jammed funnel, a pile that cannot be measured)
+// does not end the sweep: its point is reported as failed, with the reason, and left out of the reference
+// and the choice. `jobs` > 1 runs that many runs at once, one thread each (the ladder x seeds is a queue);
+// the cost column stays the deterministic particle-steps, the wall seconds are then those of shared cores.
 #pragma once
 
 #include <filesystem>
@@ -32,11 +40,22 @@ struct SweepOptions {
   std::string material;           // youngs_modulus: which material (default: the first)
   std::filesystem::path out = "sweep_out";
   bool quiet = false;
+  bool fixed_dt = false;          // psd_cut: keep the scene's time step at every cut
+  int jobs = 1;                   // runs at once (each one thread when > 1)
+};
+
+// A ladder point at which at least one run failed (left out of the reference and the choice).
+struct FailedPoint {
+  double value = 0.0;
+  long seed = 0;
+  std::string reason;
 };
 
 struct SweepResult {
   std::vector<LadderPoint> points;
   std::vector<std::vector<double>> per_seed;  // QoI per point per seed
+  std::vector<double> time_step;              // s, per point (the ladder may change it)
+  std::vector<FailedPoint> failed;
   Reference ref;
   Choice choice;
   std::string override_text;      // the chosen setting as override lines

@@ -59,8 +59,36 @@ TEST_CASE("psd_cut drops the intervals below the cut and renormalises - a cut ab
   CHECK(cut.get("factory.0.psd.0.d_min") == "0.002");
   CHECK(std::stod(cut.get("factory.0.psd.0.fraction")) == doctest::Approx(1.0));
   CHECK_FALSE(cut.has("factory.0.psd.1"));
+  // The step follows the smallest sphere kept (d_min 1 mm -> 2 mm doubles it); --fixed-dt keeps it.
+  CHECK(std::stod(cut.get("time_step")) == doctest::Approx(2 * std::stod(d.get("time_step"))).epsilon(1e-12));
+  SweepOptions fixed = o;
+  fixed.fixed_dt = true;
+  CHECK(at_value(d, fixed, 2e-3).get("time_step") == d.get("time_step"));
   CHECK(default_ladder(d, o) == std::vector<double>{1e-3, 0.0});
   CHECK_THROWS_AS(at_value(d, o, 4e-3), InputError);
+}
+
+TEST_CASE("a run that blows up is a failed point, not the end of the sweep; --jobs 2 gives the same numbers") {
+  const auto base = model::SceneDoc::parse_file(test::source_path("datasets/scenes/hertz_impact_m3.toml"));
+  SweepOptions o;
+  o.vary = "dt";
+  o.qoi = "max_overlap";
+  o.values = {4e-5, 8e-7, 4e-7};  // 4e-5 s is ~3 Rayleigh times: kinetic-energy blow-up at step 1
+  o.quiet = true;
+  const SweepResult one = sweep(base, o);
+  REQUIRE(one.failed.size() == 1);
+  CHECK(one.failed[0].value == 4e-5);
+  CHECK(one.failed[0].reason.find("kinetic-energy blow-up") != std::string::npos);
+  REQUIRE(one.points.size() == 2);
+  CHECK(one.table.find("FAILED") != std::string::npos);
+  CHECK(one.choice.index >= 0);
+  o.jobs = 2;
+  const SweepResult two = sweep(base, o);
+  REQUIRE(two.points.size() == 2);
+  for (std::size_t k = 0; k < 2; ++k) CHECK(two.points[k].qoi == one.points[k].qoi);
+  // A step longer than the run is a bad setting (exit 2 from the command), not a point with no steps.
+  o.values = {2e-4};
+  CHECK_THROWS_AS(sweep(base, o), InputError);
 }
 
 TEST_CASE("pastemix sweep writes the table, CSV, override file - a bad --qoi is exit 2") {
