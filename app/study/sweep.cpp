@@ -217,7 +217,11 @@ SweepResult sweep(const model::SceneDoc& base, const SweepOptions& o) {
   if (r.points.empty())
     throw RuntimeFailure(fmt::format("sweep: every run failed; the first: {} = {:g} seed {}: {}", o.vary,
                                      r.failed.front().value, r.failed.front().seed, r.failed.front().reason));
-  r.ref = reference_of(r.points, o.vary == "dt" && r.failed.empty() ? 2.0 : 0.0);
+  // Richardson needs the kept points to be successive halvings (a failed coarse point leaves them so).
+  bool halving = o.vary == "dt";
+  for (std::size_t k = 1; halving && k < r.points.size(); ++k)
+    halving = std::abs(r.points[k - 1].value / r.points[k].value - 2.0) < 1e-9;
+  r.ref = reference_of(r.points, halving ? 2.0 : 0.0);
   r.choice = choose(r.points, r.ref, o.tol);
   const double cost_ref = r.points.back().work;
   std::ostringstream t;
@@ -278,7 +282,7 @@ void write_outputs(const SweepResult& r, const SweepOptions& o) {
   if (!r.override_text.empty()) std::ofstream(o.out / "chosen_overrides.toml") << r.override_text;
   const std::string py = std::string(PASTEMIX_SOURCE_DIR) + "/scripts/plot_sweep.py";
   const std::string cmd = "/usr/bin/python3 '" + py + "' '" + (o.out / "sweep.csv").string() + "' '" +
-                          (o.out / "sweep.png").string() + "' " + o.qoi + " >/dev/null 2>&1";
+                          (o.out / "sweep.png").string() + "' " + o.qoi + " " + fmt::format("{:g}", o.tol) + " >/dev/null 2>&1";
   if (std::system(cmd.c_str()) != 0) fmt::print(stderr, "warning: no PNG (python/matplotlib failed)\n");
 }
 
