@@ -20,6 +20,7 @@ void register_study_commands(CLI::App& app) {
     std::string scene;
     study::SweepOptions o;
     std::vector<std::string> sets;
+    std::string overrides;
   };
   auto opts = std::make_shared<Opts>();
   std::string qoi_help = "quantity of interest:";
@@ -34,6 +35,7 @@ void register_study_commands(CLI::App& app) {
   s->add_option("--tol", opts->o.tol, "relative tolerance on the QoI (default 0.01)");
   s->add_option("--seeds", opts->o.seeds, "runs per point with seeds seed, seed+1, ... (default 1)");
   s->add_option("--material", opts->o.material, "youngs_modulus: the material varied (default: the first)");
+  s->add_option("--overrides", opts->overrides, "file of key.path = value lines, applied before --set");
   s->add_option("--set", opts->sets, "scene override key.path=value applied before the ladder");
   s->add_option("--out", opts->o.out, "output folder (default sweep_out)");
   s->add_flag("--quiet", opts->o.quiet, "no per-run lines");
@@ -41,6 +43,8 @@ void register_study_commands(CLI::App& app) {
   s->add_option("--jobs", opts->o.jobs, "runs at once, one thread each (default 1: one run with the OpenMP threads)");
   s->callback([opts] {
     model::SceneDoc base = model::SceneDoc::parse_file(opts->scene);
+    if (!opts->overrides.empty())
+      for (const auto& a : model::read_override_file(opts->overrides)) base.apply(a);
     for (const auto& a : opts->sets) base.apply(a);
     const study::SweepResult r = study::sweep(base, opts->o);
     fmt::print("{}", r.table);
@@ -55,6 +59,7 @@ void register_study_commands(CLI::App& app) {
     std::vector<double> bracket;
     int seeds = 1, max_evaluations = 8;
     std::vector<std::string> sets;
+    std::string overrides;
   };
   auto c = std::make_shared<CalOpts>();
   CLI::App* cal = group_subcommand(app, "calibrate", "calibrate an unmeasurable parameter against lab tests");
@@ -67,9 +72,12 @@ void register_study_commands(CLI::App& app) {
   rr->add_option("--mu-tol", c->mu_tol, "stop when the bracket is narrower (default 0.005)");
   rr->add_option("--seeds", c->seeds, "runs per mu_r (default 1)");
   rr->add_option("--max-evaluations", c->max_evaluations, "default 8");
+  rr->add_option("--overrides", c->overrides, "file of key.path = value lines, applied before --set");
   rr->add_option("--set", c->sets, "scene override key.path=value");
   rr->callback([c] {
     model::SceneDoc base = model::SceneDoc::parse_file(c->scene);
+    if (!c->overrides.empty())
+      for (const auto& a : model::read_override_file(c->overrides)) base.apply(a);
     for (const auto& a : c->sets) base.apply(a);
     const long seed0 = base.has("seed") ? std::stol(base.get("seed")) : 1;
     auto f = [&](double mu) {
