@@ -4,6 +4,8 @@
 // Both read and check every input first, then write through one StagedOutput: a bad input writes nothing.
 #include <unistd.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <memory>
@@ -17,11 +19,14 @@
 #include "analysis/maps/maps_h5.h"
 #include "analysis/maps/mixing_map.h"
 #include "analysis/maps/result_file.h"
+#include "analysis/pile/repose_angle.h"
 #include "analysis/plot.h"
 #include "analysis/score/lab_case.h"
 #include "analysis/score/score.h"
 #include "app/commands.h"
 #include "base/error.h"
+#include "base/h5.h"
+#include "base/stats.h"
 #include "base/staged_output.h"
 #include "lab/run_info.h"
 
@@ -221,6 +226,58 @@ void run_score(const CommonOpts& o) {
   for (const auto& p : staged.final_paths()) fmt::print("wrote {}\n", p.string());
 }
 
+// `pastemix repose RESULT.h5 ...`: the repose angle (analysis/pile/repose_angle.h) of the last snapshot of
+// each result file, and their mean and sd when there are several (seeded repeats). It measures whatever the
+// file holds: whether the pile had finished (funnel empty, at rest) is checked by the run (the sweep's QoI),
+// not here.
+struct ReposeOpts {
+  std::vector<std::string> results;
+  analysis::ReposeOptions o;
+  std::vector<double> axis, flank;
+};
+
+void run_repose(const ReposeOpts& opts) {
+  analysis::ReposeOptions o = opts.o;
+  if (!opts.axis.empty()) o.axis_xy = std::array<double, 2>{opts.axis[0], opts.axis[1]};
+  if (!opts.flank.empty()) {
+    if (!(0 <= opts.flank[0] && opts.flank[0] < opts.flank[1] && opts.flank[1] <= 1))
+      throw InputError("", 0, "--flank", "needs 0 <= lo < hi <= 1 (fractions of the pile height)");
+    o.flank_lo = opts.flank[0];
+    o.flank_hi = opts.flank[1];
+  }
+  std::vector<double> angles;
+  std::string method;
+  for (const auto& file : opts.results) {
+    const H5Reader h5(file);
+    if (!h5.exists("/snapshots")) throw InputError(file, 0, "group '/snapshots'", "missing from the file");
+    std::string last;
+    for (const auto& name : h5.children("/snapshots"))
+      if (name.size() == 6 && name.find_first_not_of("0123456789") == std::string::npos) last = std::max(last, name);
+    if (last.empty()) throw InputError(file, 0, "group '/snapshots'", "holds no snapshot");
+    const std::string g = "/snapshots/" + last;
+    const auto pos = h5.read_doubles(g + "/position");
+    const auto radius = h5.read_doubles(g + "/radius");
+    if (pos.size() != 3 * radius.size())
+      throw InputError(file, 0, "dataset '" + g + "/position'", "expected N x 3 with N = the radius count");
+    std::vector<std::array<double, 3>> x(radius.size());
+    for (std::size_t a = 0; a < x.size(); ++a) x[a] = {pos[3 * a], pos[3 * a + 1], pos[3 * a + 2]};
+    const auto r = analysis::measure_repose_angle(x, radius, o);
+    const std::int64_t seed = h5.has_attribute("/", "seed") ? h5.attribute_int("/", "seed") : -1;
+    const double t = h5.has_attribute(g, "time_s") ? h5.attribute_double(g, "time_s") : std::nan("");
+    fmt::print("{}: seed {}, t = {:g} s, {} spheres: angle {:.2f} deg (sd over {} sectors {:.2f}), height {:.1f} mm, "
+               "diameter {:.1f} mm\n", file, seed, t, radius.size(), r.angle_deg, r.sectors_used, r.sd_deg,
+               r.height * 1e3, r.diameter * 1e3);
+    angles.push_back(r.angle_deg);
+    method = r.method;
+  }
+  if (angles.size() > 1) {
+    const auto st = summarize(angles);
+    fmt::print("mean over {} files: {:.2f} +- {:.2f} deg (sd; standard error {:.2f})\n", st.n, st.mean, st.sd,
+               st.sd / std::sqrt(static_cast<double>(st.n)));
+  }
+  fmt::print("method: {}\n", method);
+}
+
 }  // namespace
 
 void register_analysis_commands(CLI::App& app) {
@@ -243,6 +300,17 @@ void register_analysis_commands(CLI::App& app) {
       ->capture_default_str();
   add_common(score, *o);
   score->callback([o] { run_score(*o); });
+
+  auto ro = std::make_shared<ReposeOpts>();
+  auto* rep = app.add_subcommand("repose", "Repose angle of the pile in the last snapshot of result files");
+  rep->add_option("RESULT", ro->results, "result files (HDF5): a run's, or a sweep's --save states")->required();
+  rep->add_option("--axis", ro->axis, "pile axis x y (m); default the mass centre")->expected(2);
+  rep->add_option("--sectors", ro->o.sectors, "azimuthal sectors")->capture_default_str()->check(CLI::Range(3, 360));
+  rep->add_option("--bin", ro->o.bin, "radial bin width (m); 0 = 2 mean diameters")->capture_default_str();
+  rep->add_option("--flank", ro->flank, "flank band lo hi, fractions of the pile height (default 0.15 0.75)")
+      ->expected(2);
+  rep->add_option("--base-z", ro->o.base_z, "floor height (m)")->capture_default_str();
+  rep->callback([ro] { run_repose(*ro); });
 }
 
 }  // namespace pastemix::app

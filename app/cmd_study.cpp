@@ -40,6 +40,7 @@ void register_study_commands(CLI::App& app) {
   s->add_option("--out", opts->o.out, "output folder (default sweep_out)");
   s->add_flag("--quiet", opts->o.quiet, "no per-run lines");
   s->add_flag("--fixed-dt", opts->o.fixed_dt, "psd_cut: keep the scene's time step (default: dt follows the smallest d_min)");
+  s->add_option("--save", opts->o.save, "folder for each run's final state (<vary>_<value>_seed<S>.h5 + .xmf)");
   s->add_option("--jobs", opts->o.jobs, "runs at once, one thread each (default 1: one run with the OpenMP threads)");
   s->callback([opts] {
     model::SceneDoc base = model::SceneDoc::parse_file(opts->scene);

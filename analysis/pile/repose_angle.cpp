@@ -62,12 +62,19 @@ ReposeAngle measure_repose_angle(std::span<const std::array<double, 3>> position
     double sx = 0, sy = 0, sxx = 0, sxy = 0;
     int count = 0;
     double reach = 0.0;
+    // The flank is what lies outward of the sector's highest cell. Cells nearer the axis are a thin wedge
+    // holding a few spheres (or the dimple the funnel tube leaves): their "surface" can be low, and fitted
+    // as flank points they flattened the line (a real 2,578-sphere pile: 31.9 +- 7.4 deg over sectors
+    // before, 36.2 +- 3.7 after).
+    int peak = 0;
+    for (int b = 1; b < bins; ++b)
+      if (surface[static_cast<std::size_t>(s * bins + b)] > surface[static_cast<std::size_t>(s * bins + peak)]) peak = b;
     for (int b = 0; b < bins; ++b) {
       const double h = surface[static_cast<std::size_t>(s * bins + b)];
       if (h == none) continue;
       const double rho = (b + 0.5) * bin;
       if (h > toe) reach = std::max(reach, (b + 1) * bin);
-      if (h < opt.flank_lo * height || h > opt.flank_hi * height) continue;
+      if (b <= peak || h < opt.flank_lo * height || h > opt.flank_hi * height) continue;
       sx += rho;
       sy += h;
       sxx += rho * rho;
@@ -96,7 +103,7 @@ ReposeAngle measure_repose_angle(std::span<const std::array<double, 3>> position
   out.diameter = 2.0 * d.mean;
   out.method = fmt::format(
       "surface = highest sphere top per ({} sectors x {:.2f} mm radial bins); least-squares flank between {:.0f} "
-      "and {:.0f} % of the pile height per sector; mean over sectors",
+      "and {:.0f} % of the pile height, outward of the sector's highest cell; mean over sectors",
       opt.sectors, bin * 1e3, opt.flank_lo * 100, opt.flank_hi * 100);
   return out;
 }

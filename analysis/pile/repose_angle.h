@@ -6,9 +6,9 @@
 //  1. The pile axis is the vertical through `axis_xy` (the funnel axis), or the pile's mass centre.
 //  2. Space around the axis is divided into `sectors` azimuthal sectors and radial bins of width `bin`.
 //     In each (sector, bin) cell the surface height is the highest sphere top (z + r) in the cell.
-//  3. In each sector the flank is the part of the profile between `flank_lo` and `flank_hi` of the pile's
-//     height above the base; a least-squares line h = a - b rho through those points gives the sector's
-//     angle atan(b). Excluding the rounded top and the toe (rolling particles) is what makes the number
+//  3. In each sector the flank is the part of the profile outward of the sector's highest cell and between
+//     `flank_lo` and `flank_hi` of the pile's height above the base; a least-squares line h = a - b rho
+//     through those points gives the sector's angle atan(b). Excluding the rounded top and the toe (rolling particles) is what makes the number
 //     comparable to a lab protractor/height-diameter reading.
 //  4. The angle is the mean over sectors with a usable flank; its standard deviation over sectors is the
 //     azimuthal spread. The pile diameter is twice the mean over sectors of the largest radius at which

@@ -18,6 +18,8 @@
 
 #include "app/study/qoi.h"
 #include "base/error.h"
+#include "base/staged_output.h"
+#include "model/output.h"
 #include "base/stats.h"
 
 namespace pastemix::app::study {
@@ -114,7 +116,7 @@ std::vector<double> default_ladder(const model::SceneDoc& base, const SweepOptio
   return v;
 }
 
-RunCost run_once(const model::SceneDoc& doc, const std::string& qoi_name) {
+RunCost run_once(const model::SceneDoc& doc, const std::string& qoi_name, const std::filesystem::path& save_h5) {
   const QoiDef& q = find_qoi(qoi_name);
   const model::Scene s = doc.load();
   model::World w = model::make_world(s);
@@ -131,6 +133,16 @@ RunCost run_once(const model::SceneDoc& doc, const std::string& qoi_name) {
     if (q.max_over_steps) best = std::max(best, q.eval(w));
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (!save_h5.empty()) {
+    StagedOutput staged;
+    {
+      model::RunOutput out(staged.path(save_h5), save_h5.filename().string(), s);
+      out.snapshot(w);
+      out.sample(w);
+      staged.write_text(std::filesystem::path(save_h5).replace_extension(".xmf"), out.finish(w, wall, 1));
+    }
+    staged.commit();
+  }
   return {q.max_over_steps ? best : q.eval(w), wall, static_cast<double>(n) * static_cast<double>(s.particles.size()),
           s.particles.size()};
 }
@@ -171,7 +183,10 @@ SweepResult sweep(const model::SceneDoc& base, const SweepOptions& o) {
     for (std::size_t i; (i = next++) < tasks.size();) {
       Task& t = tasks[i];
       try {
-        t.cost = run_once(t.doc, o.qoi);
+        const std::filesystem::path save =
+            o.save.empty() ? std::filesystem::path{}
+                           : o.save / fmt::format("{}_{:.6g}_seed{}.h5", o.vary, values[t.point], t.seed);
+        t.cost = run_once(t.doc, o.qoi, save);
       } catch (const RuntimeFailure& e) {
         t.failure = e.what();
       }

@@ -41,6 +41,7 @@ struct SweepOptions {
   std::filesystem::path out = "sweep_out";
   bool quiet = false;
   bool fixed_dt = false;          // psd_cut: keep the scene's time step at every cut
+  std::filesystem::path save;     // non-empty: each run's final state as <save>/<vary>_<value>_seed<S>.h5/.xmf
   int jobs = 1;                   // runs at once (each one thread when > 1)
 };
 
@@ -72,8 +73,9 @@ struct RunCost {
   double work = 0.0;     // particles x steps
   std::size_t particles = 0;
 };
-// One run in-process (no HDF5).
-RunCost run_once(const model::SceneDoc& doc, const std::string& qoi);
+// One run in-process. With `save_h5` the final state is written there (an ordinary result file with one
+// snapshot, plus its .xmf) before the QoI is evaluated, so a run whose QoI fails leaves its state to look at.
+RunCost run_once(const model::SceneDoc& doc, const std::string& qoi, const std::filesystem::path& save_h5 = {});
 
 SweepResult sweep(const model::SceneDoc& base, const SweepOptions& o);
 // Writes <out>/sweep.csv, <out>/chosen_overrides.toml, <out>/sweep.png (PNG only if python works).

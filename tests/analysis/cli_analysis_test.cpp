@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // `pastemix maps` and `pastemix score` through the built command (app/cmd_analysis.cpp): good runs write
 // their outputs; bad inputs exit 2, name the file and the field, and write nothing.
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -10,6 +11,7 @@
 
 #include "analysis/maps/mixing_map.h"
 #include "analysis/maps/result_file.h"
+#include "base/rng.h"
 #include "tests/analysis/result_fixture.h"
 #include "tests/run_command.h"
 
@@ -129,4 +131,34 @@ TEST_CASE("cli: bad inputs exit 2, name the file and field, and write nothing") 
   CHECK(r.exit_code == 0);
   CHECK(r.output.find("command line --surface-z") != std::string::npos);
   CHECK(r.output.find("K = unknown") != std::string::npos);
+}
+
+TEST_CASE("cli: repose measures the last snapshot of result files, with the mean over seeds") {
+  Fixture f("cli_repose");
+  // Two cone piles of 35 deg (base radius 6 cm, 3 mm spheres filling the cone).
+  for (int k = 0; k < 2; ++k) {
+    pastemix::test::ResultSpec spec;
+    spec.seed = 11 + k;
+    pastemix::Rng rng(static_cast<std::uint64_t>(3 + k));
+    const double R = 0.06, t = std::tan(35.0 * 3.14159265358979323846 / 180.0), d = 0.003;
+    while (spec.final.size() < 20000) {
+      const double x = rng.uniform(-R, R), y = rng.uniform(-R, R), top = rng.uniform(d, R * t);
+      if (top > R * t - std::hypot(x, y) * t) continue;
+      spec.final.push_back({{x, y, top - d / 2}, d / 2});
+    }
+    pastemix::test::write_result(f.dir / fmt::format("pile{}.h5", k), spec);
+  }
+  const auto r = run_pastemix(fmt::format("repose {} {}", f.p("pile0.h5"), f.p("pile1.h5")));
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.output.find("seed 11") != std::string::npos);
+  const auto at = r.output.find("mean over 2 files: ");
+  REQUIRE(at != std::string::npos);
+  const double mean = std::stod(r.output.substr(at + 19));
+  CHECK(std::abs(mean - 35.0) < 1.0);
+  // A file that is not a result is exit 2 naming it.
+  std::ofstream(f.dir / "text.h5") << "not an HDF5 file\n";
+  const auto bad = run_pastemix("repose " + f.p("text.h5"));
+  CHECK(bad.exit_code == 2);
+  CHECK(bad.output.find("text.h5") != std::string::npos);
 }

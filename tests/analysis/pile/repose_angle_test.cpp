@@ -43,6 +43,33 @@ TEST_CASE("repose angle: synthetic cones of 25, 35 and 40 degrees within 1 degre
   }
 }
 
+TEST_CASE("repose angle: a sparse flat-topped pile with a dimple at the axis (as a funnel tube leaves) within 1.5 degrees") {
+  // One layer of 4 mm spheres on the surface of a truncated cone (flat top of radius 15 mm at 40 mm, flank at
+  // 37 deg down to the floor), a single-layer toe ring beyond the foot, and the centre's spheres sunk to 12 mm.
+  // This is the shape and sphere count (~2,500) of the real piles; the dimple's cells sit inside the flank
+  // band and bent the fit before the flank was taken outward of each sector's highest cell.
+  const double d = 0.004, H = 0.04, r_top = 0.015, theta = 37.0, t = std::tan(theta * kPi / 180.0);
+  const double r_foot = r_top + H / t;
+  std::vector<std::array<double, 3>> pos;
+  std::vector<double> rad;
+  pastemix::Rng rng(5);
+  for (double x = -r_foot - 0.02; x <= r_foot + 0.02; x += d)
+    for (double y = -r_foot - 0.02; y <= r_foot + 0.02; y += d) {
+      const double px = x + rng.uniform(-0.3, 0.3) * d, py = y + rng.uniform(-0.3, 0.3) * d;
+      const double rho = std::hypot(px, py);
+      double top = rho <= r_top ? H : H - (rho - r_top) * t;
+      if (rho < 0.004) top = 0.012;                   // the dimple
+      if (top < d) top = rho < r_foot + 0.02 ? d : -1;  // the toe: one layer, then nothing
+      if (top < 0) continue;
+      pos.push_back({px, py, top - d / 2});
+      rad.push_back(d / 2);
+    }
+  const auto a = measure_repose_angle(pos, rad, ReposeOptions{.axis_xy = std::array<double, 2>{0.0, 0.0}});
+  MESSAGE("truncated cone 37 deg, " << pos.size() << " spheres: measured " << a.angle_deg << " +- " << a.sd_deg);
+  CHECK(std::abs(a.angle_deg - theta) < 1.5);
+  CHECK(a.sectors_used >= 10);
+}
+
 TEST_CASE("repose angle: particles that flowed away are a failure, not zero degrees") {
   std::vector<std::array<double, 3>> pos;
   std::vector<double> rad;
