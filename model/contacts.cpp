@@ -107,21 +107,27 @@ void pair_chunk(const std::vector<typename Law::Params>& table, const StepContex
   }
 }
 
+// Orphaned worksharing: called inside the World's parallel region the chunks are shared by its threads
+// (and the implicit barrier at the end of `omp for` / `omp single` is the one the gather needs); called
+// outside any region it runs on the calling thread alone.
 template <class Law, bool Direct>
 void pair_pass(const std::vector<typename Law::Params>& table, const StepContext& ctx, Particles& p,
                PairList& L) {
   const long n = static_cast<long>(L.size());
   const long chunks = (n + kChunk - 1) / kChunk;
   if constexpr (Direct) {
-    std::fill(p.f.begin(), p.f.end(), Vec3{});
-    if (p.has_rotation) {
-      std::fill(p.torque.begin(), p.torque.end(), Vec3{});
-      std::fill(p.rolling_capacity.begin(), p.rolling_capacity.end(), 0.0);
+#pragma omp single
+    {
+      std::fill(p.f.begin(), p.f.end(), Vec3{});
+      if (p.has_rotation) {
+        std::fill(p.torque.begin(), p.torque.end(), Vec3{});
+        std::fill(p.rolling_capacity.begin(), p.rolling_capacity.end(), 0.0);
+      }
+      for (long c = 0; c < chunks; ++c) pair_chunk<Law, true>(table, ctx, p, L, c * kChunk, std::min(n, (c + 1) * kChunk));
     }
-    for (long c = 0; c < chunks; ++c) pair_chunk<Law, true>(table, ctx, p, L, c * kChunk, std::min(n, (c + 1) * kChunk));
   } else {
     // Dynamic: on a shared machine a thread that lost its core does not hold up the others.
-#pragma omp parallel for schedule(dynamic, 4)
+#pragma omp for schedule(dynamic, 4)
     for (long c = 0; c < chunks; ++c) pair_chunk<Law, false>(table, ctx, p, L, c * kChunk, std::min(n, (c + 1) * kChunk));
   }
 }

@@ -79,7 +79,8 @@ struct StepContext {
 // Pair forces. direct = true (one thread): summed straight into p.f / p.torque / p.rolling_capacity
 // (overwriting them) in ascending pair order. direct = false: each touching pair writes its two gather
 // slots (pairs.slots), summed per particle by gather_one() (the same order, so the same bits). The law is
-// chosen once here with std::visit.
+// chosen once here with std::visit. Call it from every thread of a parallel region (it shares the work
+// with orphaned `omp for` / `omp single` and ends with their barrier), or outside any region.
 void compute_pair_forces(const LawTable& laws, const StepContext& ctx, Particles& p, PairList& pairs, bool direct);
 
 // Sum of the pair contributions of particle a in ascending pair order (the order the direct pass adds

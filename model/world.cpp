@@ -93,29 +93,41 @@ inline void World::kick_one(long a, double h, bool rot, bool roll) {
   }
 }
 
-void World::forces(double h, bool kick) {
+inline void World::drift_one(long a, double& d2, long& first_bad) {
+  p_.x[a] += p_.v[a] * cfg_.dt;
+  const Vec3& x = p_.x[a];
+  const Vec3 lo = cfg_.domain_min, hi = cfg_.domain_max;
+  // NaN fails every comparison, so "not inside" also catches it.
+  if (!(x.x >= lo.x && x.x <= hi.x && x.y >= lo.y && x.y <= hi.y && x.z >= lo.z && x.z <= hi.z))
+    first_bad = std::min(first_bad, a);
+  d2 = std::max(d2, norm2(x - x_at_rebuild_[a]));
+}
+
+double World::forces(double h, Then then) {
   StepContext ctx{t_, cfg_.dt, static_cast<int>(materials_.size()), cfg_.rolling};
   const long n = static_cast<long>(p_.size());
   const bool parallel = n >= parallel_min_items && omp_get_max_threads() > 1;
   // One thread: the pair pass sums straight into the particles; several: one output per pair, gathered
   // below in the same order (same bits).
   const bool direct = !parallel || static_cast<long>(pairs_.size()) < parallel_min_items;
-  {
-    StageTimer timer{profile_.seconds[Profile::contact_forces]};
-    compute_pair_forces(laws_, ctx, p_, pairs_, direct);
-  }
-  StageTimer timer{profile_.seconds[Profile::walls_kick]};
-  if (fluid_) fluid_->update(p_);  // fluid hook: positions only (the drift is done)
+  const auto t0 = Clock::now();
+  // Both read positions only (the drift is done), so they go before the region.
+  if (fluid_) fluid_->update(p_);  // fluid hook
   wall_state_.update(walls_, ctx.t);
   const bool rot = p_.has_rotation;
   const bool roll = cfg_.rolling == RollingLaw::constant_torque;
   const bool has_walls = !walls_.empty();
+  const bool kick = then != Then::nothing, drift = then == Then::kick_drift;
+  double max_d2 = 0.0;
+  long bad = std::numeric_limits<long>::max();
+  Clock::time_point t_mid;
   // Per particle, in this order: pair forces (gathered, or already summed), wall forces in wall order,
-  // then the half kick: the same operations in the same order as separate passes, one sweep of memory.
+  // then the half kick (and the next opening half kick and drift): the same operations in the same order
+  // as separate passes, one sweep of memory.
   std::visit(
       [&](const auto& table) {
         using Law = typename std::decay_t<decltype(table)>::value_type::Law;
-        auto one = [&](long a) {
+        auto one = [&](long a, double& d2, long& first_bad) {
           Vec3 f, t;
           double rc = 0.0;
           if (direct) {
@@ -127,7 +139,7 @@ void World::forces(double h, bool kick) {
           } else {
             gather_one(pairs_, static_cast<std::size_t>(a), rot, f, t, rc);
           }
-          if (has_walls)
+          if (has_walls && wall_contacts_.start[a] != wall_contacts_.start[a + 1])
             wall_forces_one<Law>(table, ctx, walls_, wall_state_, p_, wall_contacts_, static_cast<std::size_t>(a), f, t, rc);
           p_.f[a] = f;
           if (rot) {
@@ -135,15 +147,28 @@ void World::forces(double h, bool kick) {
             p_.rolling_capacity[a] = rc;
           }
           if (kick) kick_one(a, h, rot, roll);
+          if (drift) {
+            kick_one(a, h, rot, roll);
+            drift_one(a, d2, first_bad);
+          }
         };
-        if (parallel) {
-#pragma omp parallel for schedule(dynamic, 256)
-          for (long a = 0; a < n; ++a) one(a);
-        } else {
-          for (long a = 0; a < n; ++a) one(a);
+        // One region per step: the pair pass ends with the barrier the gather needs; the per-particle
+        // pass's reductions (max and min) are exact in any order.
+#pragma omp parallel if (parallel) reduction(max : max_d2) reduction(min : bad)
+        {
+          compute_pair_forces(laws_, ctx, p_, pairs_, direct);
+#pragma omp master
+          t_mid = Clock::now();
+#pragma omp for schedule(dynamic, 256) nowait
+          for (long a = 0; a < n; ++a) one(a, max_d2, bad);
         }
       },
       laws_);
+  const auto t1 = Clock::now();
+  profile_.seconds[Profile::contact_forces] += std::chrono::duration<double>(t_mid - t0).count();
+  profile_.seconds[Profile::walls_kick] += std::chrono::duration<double>(t1 - t_mid).count();
+  if (bad != std::numeric_limits<long>::max() && bad_index_ < 0) bad_index_ = bad;
+  return max_d2;
 }
 
 // First half kick and drift in one loop, with the domain check and the displacement since the last
@@ -152,38 +177,27 @@ double World::kick_drift(double h) {
   const long n = static_cast<long>(p_.size());
   const bool rot = p_.has_rotation;
   const bool roll = cfg_.rolling == RollingLaw::constant_torque;
-  const double dt = cfg_.dt;
   double max_d2 = 0.0;
   long bad = std::numeric_limits<long>::max();
-  const Vec3 lo = cfg_.domain_min, hi = cfg_.domain_max;
   const bool parallel = n >= parallel_min_items && omp_get_max_threads() > 1;
-  auto one = [&](long a, double& d2, long& first_bad) {
+#pragma omp parallel for schedule(dynamic, 512) reduction(max : max_d2) reduction(min : bad) if (parallel)
+  for (long a = 0; a < n; ++a) {
     kick_one(a, h, rot, roll);
-    p_.x[a] += p_.v[a] * dt;
-    const Vec3& x = p_.x[a];
-    // NaN fails every comparison, so "not inside" also catches it.
-    if (!(x.x >= lo.x && x.x <= hi.x && x.y >= lo.y && x.y <= hi.y && x.z >= lo.z && x.z <= hi.z))
-      first_bad = std::min(first_bad, a);
-    d2 = std::max(d2, norm2(x - x_at_rebuild_[a]));
-  };
-  if (parallel) {
-#pragma omp parallel for schedule(dynamic, 512) reduction(max : max_d2) reduction(min : bad)
-    for (long a = 0; a < n; ++a) one(a, max_d2, bad);
-  } else {
-    for (long a = 0; a < n; ++a) one(a, max_d2, bad);
+    drift_one(a, max_d2, bad);
   }
   if (bad != std::numeric_limits<long>::max() && bad_index_ < 0) bad_index_ = bad;
   return max_d2;
 }
 
-void World::step() {
+void World::advance(long n) {
+  if (n <= 0) return;
   const double h = 0.5 * cfg_.dt;
   if (!started_) {
     {
       StageTimer timer{profile_.seconds[Profile::neighbor]};
       rebuild_neighbors();
     }
-    forces(h, false);
+    forces(h, Then::nothing);
     started_ = true;
   }
   double moved2;
@@ -191,21 +205,24 @@ void World::step() {
     StageTimer timer{profile_.seconds[Profile::kick_drift]};
     moved2 = kick_drift(h);
   }
-  t_ += cfg_.dt;
-  ++steps_;
-  if (bad_index_ >= 0) check();
-  // The lists stay valid while no particle has moved more than skin/2 since their build, and, for the wall
-  // candidates, particle plus wall motion stays below skin/2; a wall's motion is |v| (t - t_build); a
-  // removed wall needs no rebuild (it is skipped when inactive).
-  double wall_move = 0.0;
-  for (const Wall& wall : walls_)
-    wall_move = std::max(wall_move, norm(wall.displacement(t_) - wall.displacement(t_at_rebuild_)));
-  const double half = 0.5 * cfg_.skin;
-  if (moved2 > half * half || (wall_move > 0.0 && std::sqrt(moved2) + wall_move > half)) {
-    StageTimer timer{profile_.seconds[Profile::neighbor]};
-    rebuild_neighbors();
+  for (long s = 0; s < n; ++s) {
+    t_ += cfg_.dt;
+    ++steps_;
+    if (bad_index_ >= 0) check();
+    // The lists stay valid while no particle has moved more than skin/2 since their build, and, for the
+    // wall candidates, particle plus wall motion stays below skin/2; a wall's motion is |v| (t - t_build);
+    // a removed wall needs no rebuild (it is skipped when inactive).
+    double wall_move = 0.0;
+    for (const Wall& wall : walls_)
+      wall_move = std::max(wall_move, norm(wall.displacement(t_) - wall.displacement(t_at_rebuild_)));
+    const double half = 0.5 * cfg_.skin;
+    if (moved2 > half * half || (wall_move > 0.0 && std::sqrt(moved2) + wall_move > half)) {
+      StageTimer timer{profile_.seconds[Profile::neighbor]};
+      rebuild_neighbors();
+    }
+    // The last step ends at a consistent state (x, v at t); the others run into the next step's drift.
+    moved2 = forces(h, s + 1 < n ? Then::kick_drift : Then::kick);
   }
-  forces(h, true);
 }
 
 void World::check() const {
