@@ -17,12 +17,14 @@ namespace {
 // the candidates of a settled bed are not touching; a mixed loop mispredicted the "touching?" branch.
 constexpr long kChunk = 256;
 
-// Direct = false: each touching pair writes its two gather slots (summed afterwards, in parallel). Direct = true (one
-// thread): the forces are added to the particles in ascending pair order right away, which is exactly the
-// order the gather uses (its CSR lists each particle's pairs in ascending order), so both give the same bits.
-template <class Law, bool Direct>
+// Pairs ks[q0 .. q1) (Part = true: pair indices of this thread's list; false: ks = null, pairs q0 .. q1
+// of the whole list, one thread owning every particle). Forces are added to the owned particles
+// ([lo, hi)) in ascending pair order. Part: a cross pair (both threads compute it) reads its history from
+// cross_hist[cur]; the owner of i writes the new one into cross_hist[1 - cur] and its touching flag, the
+// other thread works on a private copy.
+template <class Law, bool Part>
 void pair_chunk(const std::vector<typename Law::Params>& table, const StepContext& ctx, Particles& p, PairList& L,
-                long k0, long k1) {
+                const std::uint32_t* ks, long q0, long q1, int me, int cur) {
   const bool rot = p.has_rotation;
   const bool constant_roll = ctx.rolling == RollingLaw::constant_torque;
   // Only the elastic-plastic law reads the relative rotation and returns a rolling torque. Without it the
@@ -30,36 +32,50 @@ void pair_chunk(const std::vector<typename Law::Params>& table, const StepContex
   // never becomes -0 (round to nearest), so adding -0 or +0 to it gives the same bits.
   const bool spring_roll = ctx.rolling == RollingLaw::elastic_plastic;
   const int w = L.width;
+  const std::size_t ws = static_cast<std::size_t>(w);
   std::uint32_t idx[kChunk];
   Vec3 sep[kChunk];
   double sep2[kChunk], rsums[kChunk];
   long m = 0;
-  for (long k = k0; k < k1; ++k) {
+  for (long q = q0; q < q1; ++q) {
+    const std::uint32_t k = Part ? ks[q] : static_cast<std::uint32_t>(q);
     const std::uint32_t a = L.i[k], b = L.j[k];
     const Vec3 d = p.x[b] - p.x[a];
     const double rsum = p.radius[a] + p.radius[b];
     const double dist2 = norm2(d);
     const bool touch = !(dist2 >= rsum * rsum);
-    idx[m] = static_cast<std::uint32_t>(k);
+    idx[m] = k;
     sep[m] = d;
     sep2[m] = dist2;
     rsums[m] = rsum;
     m += touch;
-    // Not touching: forget the springs (a new contact starts from zero displacement) and clear the pair's
-    // gather slots (the gather adds every slot of a particle).
-    if (!touch && L.touching[k]) {
-      std::fill_n(&L.history[static_cast<std::size_t>(k) * w], w, 0.0);
-      L.slots[L.slot_i[k]] = PairList::Slot{};
-      L.slots[L.slot_j[k]] = PairList::Slot{};
+    if (touch) continue;
+    // Not touching: forget the springs (a new contact starts from zero displacement).
+    if (Part && L.cross[k] != PairList::kNone) {
+      if (L.owner[a] == me) {
+        std::fill_n(&L.cross_hist[cur ^ 1][L.cross[k] * ws], w, 0.0);
+        L.touching[k] = 0;
+      }
+    } else if (L.touching[k]) {
+      std::fill_n(&L.history[k * ws], w, 0.0);
+      L.touching[k] = 0;
     }
-    L.touching[k] = touch;
   }
+  double scratch[HertzMindlin::history_size];
   for (long q = 0; q < m; ++q) {
     const std::uint32_t k = idx[q];
     const std::uint32_t a = L.i[k], b = L.j[k];
+    const bool own_a = !Part || L.owner[a] == me;
+    const bool own_b = !Part || L.owner[b] == me;
     const Vec3 d = sep[q];
     const double rsum = rsums[q];
-    double* hist = w ? &L.history[static_cast<std::size_t>(k) * w] : nullptr;
+    double* hist = w ? &L.history[k * ws] : nullptr;
+    if (Part && w && L.cross[k] != PairList::kNone) {
+      const double* old = &L.cross_hist[cur][L.cross[k] * ws];
+      hist = own_a ? &L.cross_hist[cur ^ 1][L.cross[k] * ws] : scratch;
+      std::copy_n(old, w, hist);
+    }
+    if (!Part || own_a) L.touching[k] = 1;
     const double dist = std::sqrt(sep2[q]);
     typename Law::Geometry g;
     g.n = d * (1.0 / dist);
@@ -77,58 +93,52 @@ void pair_chunk(const std::vector<typename Law::Params>& table, const StepContex
     g.dt = ctx.dt;
     const auto& prm = table[L.law_index[k]];
     const auto r = Law::force(prm, g, hist, w);
-    if constexpr (Direct) {
+    const Vec3 nxt = rot ? cross(g.n, r.tangential_i) : Vec3{};  // (arm n) x F_t = arm (n x F_t)
+    if (own_a) {
       p.f[a] += r.force_i;
+      if (rot) {
+        p.torque[a] += spring_roll ? nxt * arm_a + r.rolling_torque_i : nxt * arm_a;
+        if (constant_roll) p.rolling_capacity[a] += prm.rolling_friction * r.normal_force * arm_a;
+      }
+    }
+    if (own_b) {
       p.f[b] -= r.force_i;
       if (rot) {
-        const Vec3 nxt = cross(g.n, r.tangential_i);  // (arm n) x F_t = arm (n x F_t): one cross per pair
-        p.torque[a] += spring_roll ? nxt * arm_a + r.rolling_torque_i : nxt * arm_a;
         p.torque[b] += spring_roll ? nxt * arm_b - r.rolling_torque_i : nxt * arm_b;
-        if (constant_roll) {
-          p.rolling_capacity[a] += prm.rolling_friction * r.normal_force * arm_a;
-          p.rolling_capacity[b] += prm.rolling_friction * r.normal_force * arm_b;
-        }
-      }
-    } else {
-      PairList::Slot& oi = L.slots[L.slot_i[k]];
-      PairList::Slot& oj = L.slots[L.slot_j[k]];
-      oi.f = r.force_i;
-      oj.f = -r.force_i;
-      if (rot) {
-        const Vec3 nxt = cross(g.n, r.tangential_i);
-        oi.t = spring_roll ? nxt * arm_a + r.rolling_torque_i : nxt * arm_a;
-        oj.t = spring_roll ? nxt * arm_b - r.rolling_torque_i : nxt * arm_b;
-        if (constant_roll) {
-          oi.roll = prm.rolling_friction * r.normal_force * arm_a;
-          oj.roll = prm.rolling_friction * r.normal_force * arm_b;
-        }
+        if (constant_roll) p.rolling_capacity[b] += prm.rolling_friction * r.normal_force * arm_b;
       }
     }
   }
 }
 
-// Orphaned worksharing: called inside the World's parallel region the chunks are shared by its threads
-// (and the implicit barrier at the end of `omp for` / `omp single` is the one the gather needs); called
-// outside any region it runs on the calling thread alone.
-template <class Law, bool Direct>
-void pair_pass(const std::vector<typename Law::Params>& table, const StepContext& ctx, Particles& p,
-               PairList& L) {
-  const long n = static_cast<long>(L.size());
-  const long chunks = (n + kChunk - 1) / kChunk;
-  if constexpr (Direct) {
-#pragma omp single
-    {
-      std::fill(p.f.begin(), p.f.end(), Vec3{});
+template <class Law>
+void pair_pass(const std::vector<typename Law::Params>& table, const StepContext& ctx, Particles& p, PairList& L,
+               int thread, int parity) {
+  const bool part = L.threads > 1;
+  if (part) {
+    for (std::uint32_t a : L.own[thread]) {
+      p.f[a] = Vec3{};
       if (p.has_rotation) {
-        std::fill(p.torque.begin(), p.torque.end(), Vec3{});
-        std::fill(p.rolling_capacity.begin(), p.rolling_capacity.end(), 0.0);
+        p.torque[a] = Vec3{};
+        p.rolling_capacity[a] = 0.0;
       }
-      for (long c = 0; c < chunks; ++c) pair_chunk<Law, true>(table, ctx, p, L, c * kChunk, std::min(n, (c + 1) * kChunk));
     }
   } else {
-    // Dynamic: on a shared machine a thread that lost its core does not hold up the others.
-#pragma omp for schedule(dynamic, 4)
-    for (long c = 0; c < chunks; ++c) pair_chunk<Law, false>(table, ctx, p, L, c * kChunk, std::min(n, (c + 1) * kChunk));
+    std::fill(p.f.begin(), p.f.end(), Vec3{});
+    if (p.has_rotation) {
+      std::fill(p.torque.begin(), p.torque.end(), Vec3{});
+      std::fill(p.rolling_capacity.begin(), p.rolling_capacity.end(), 0.0);
+    }
+  }
+  if (part) {
+    const auto& ks = L.mine[thread];
+    const long n = static_cast<long>(ks.size());
+    for (long q = 0; q < n; q += kChunk)
+      pair_chunk<Law, true>(table, ctx, p, L, ks.data(), q, std::min(n, q + kChunk), thread, parity);
+  } else {
+    const long n = static_cast<long>(L.size());
+    for (long q = 0; q < n; q += kChunk)
+      pair_chunk<Law, false>(table, ctx, p, L, nullptr, q, std::min(n, q + kChunk), 0, 0);
   }
 }
 
@@ -197,7 +207,7 @@ void WallContacts::rebuild(const std::vector<Wall>& w, const Particles& p, doubl
   touching = std::move(new_touch);
 }
 
-void PairList::rebuild(const CandidatePairs& c, const Particles& p, int n_materials) {
+void PairList::rebuild(CandidatePairs& c, const Particles& p, int n_materials) {
   const std::size_t n = c.i.size();
   std::vector<double> new_hist(n * static_cast<std::size_t>(width), 0.0);
   std::vector<std::uint32_t> new_touch(n, 0);
@@ -229,13 +239,11 @@ void PairList::rebuild(const CandidatePairs& c, const Particles& p, int n_materi
       break;
     }
   }
-  i = c.i;
-  j = c.j;
+  i.swap(c.i);
+  j.swap(c.j);
   history = std::move(new_hist);
   touching = std::move(new_touch);
-  slots.assign(2 * n, Slot{});
-  slot_i.resize(n);
-  slot_j.resize(n);
+  threads = 0;  // partition() again
   // CSR per particle, entries in ascending pair order.
   const std::size_t np = p.size();
   start.assign(np + 1, 0);
@@ -247,23 +255,93 @@ void PairList::rebuild(const CandidatePairs& c, const Particles& p, int n_materi
   entry.resize(2 * n);
   std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
   for (std::size_t k = 0; k < n; ++k) {
-    slot_i[k] = fill[i[k]]++;
-    slot_j[k] = fill[j[k]]++;
-    entry[slot_i[k]] = static_cast<std::uint32_t>(2 * k);
-    entry[slot_j[k]] = static_cast<std::uint32_t>(2 * k + 1);
+    entry[fill[i[k]]++] = static_cast<std::uint32_t>(2 * k);
+    entry[fill[j[k]]++] = static_cast<std::uint32_t>(2 * k + 1);
   }
 }
 
-void compute_pair_forces(const LawTable& laws, const StepContext& ctx, Particles& p, PairList& pairs, bool direct) {
+void PairList::partition(int n_threads, const std::vector<Vec3>& x) {
+  threads = n_threads;
+  const std::size_t np = x.size(), n = size(), ws = static_cast<std::size_t>(width);
+  owner.assign(np, 0);
+  own.resize(static_cast<std::size_t>(std::max(n_threads, 1)));
+  mine.resize(static_cast<std::size_t>(std::max(n_threads, 1)));
+  for (auto& list : own) list.clear();
+  for (auto& list : mine) list.clear();
+  cross.assign(n, kNone);
+  cross_pairs.clear();
+  parity = 0;
+  if (n_threads <= 1 || np == 0) return;
+  // Slabs across the longest side of the particles' bounding box, of about equal cost: the fewer pairs
+  // cross a cut, the less work is done twice (settled bed, 2 threads: 2 % of the pairs cross a cut across
+  // its 20 cm side, 14 % cross a cut between the halves of the index range).
+  Vec3 lo = x[0], hi = x[0];
+  for (const Vec3& q : x) {
+    lo = {std::min(lo.x, q.x), std::min(lo.y, q.y), std::min(lo.z, q.z)};
+    hi = {std::max(hi.x, q.x), std::max(hi.y, q.y), std::max(hi.z, q.z)};
+  }
+  const Vec3 ext = hi - lo;
+  const int axis = ext.x >= ext.y && ext.x >= ext.z ? 0 : (ext.y >= ext.z ? 1 : 2);
+  auto coord = [&](const Vec3& q) { return axis == 0 ? q.x - lo.x : axis == 1 ? q.y - lo.y : q.z - lo.z; };
+  const double len = axis == 0 ? ext.x : axis == 1 ? ext.y : ext.z;
+  // Cost of a particle, in rough units of one candidate test: its kick and walls (4), its candidate pairs
+  // (1 each) and its touching pairs (5 more each: the force law). Cumulated over 4096 bins along the axis.
+  std::vector<double> cost(np, 4.0);
+  for (std::size_t k = 0; k < n; ++k) {
+    const double c = 1.0 + 5.0 * touching[k];
+    cost[i[k]] += c;
+    cost[j[k]] += c;
+  }
+  constexpr int kBins = 4096;
+  std::vector<double> bin(kBins + 1, 0.0);
+  std::vector<int> bin_of(np);
+  const double scale = len > 0.0 ? kBins / len : 0.0;
+  double total = 0.0;
+  for (std::size_t a = 0; a < np; ++a) {
+    bin_of[a] = std::clamp(static_cast<int>(coord(x[a]) * scale), 0, kBins - 1);
+    bin[static_cast<std::size_t>(bin_of[a])] += cost[a];
+    total += cost[a];
+  }
+  // First bin of each thread's slab.
+  std::vector<int> first(static_cast<std::size_t>(n_threads) + 1, kBins);
+  first[0] = 0;
+  double run = 0.0;
+  int t = 1;
+  for (int b = 0; b < kBins && t < n_threads; ++b) {
+    run += bin[static_cast<std::size_t>(b)];
+    while (t < n_threads && run >= total * t / n_threads) first[static_cast<std::size_t>(t++)] = b + 1;
+  }
+  for (std::size_t a = 0; a < np; ++a) {
+    const int o = static_cast<int>(std::upper_bound(first.begin(), first.end(), bin_of[a]) - first.begin()) - 1;
+    owner[a] = static_cast<std::uint8_t>(std::clamp(o, 0, n_threads - 1));
+    own[owner[a]].push_back(static_cast<std::uint32_t>(a));
+  }
+  for (std::size_t k = 0; k < n; ++k) {
+    const int oi = owner[i[k]], oj = owner[j[k]];
+    mine[static_cast<std::size_t>(oi)].push_back(static_cast<std::uint32_t>(k));
+    if (oj != oi) {
+      mine[static_cast<std::size_t>(oj)].push_back(static_cast<std::uint32_t>(k));
+      cross[k] = static_cast<std::uint32_t>(cross_pairs.size());
+      cross_pairs.push_back(static_cast<std::uint32_t>(k));
+    }
+  }
+  for (auto& h : cross_hist) h.assign(cross_pairs.size() * ws, 0.0);
+  for (std::size_t c = 0; c < cross_pairs.size(); ++c)
+    std::copy_n(&history[cross_pairs[c] * ws], ws, &cross_hist[0][c * ws]);
+}
+
+void PairList::sync_cross() {
+  const std::size_t ws = static_cast<std::size_t>(width);
+  if (threads <= 1 || ws == 0) return;
+  for (std::size_t c = 0; c < cross_pairs.size(); ++c)
+    std::copy_n(&cross_hist[parity][c * ws], ws, &history[cross_pairs[c] * ws]);
+}
+
+void pair_forces(const LawTable& laws, const StepContext& ctx, Particles& p, PairList& pairs, int thread, int parity) {
   std::visit(
       [&](const auto& table) {
         using Params = typename std::decay_t<decltype(table)>::value_type;
-        if constexpr (std::is_same_v<Params, HertzMindlin::Params>) {
-          if (direct)
-            pair_pass<HertzMindlin, true>(table, ctx, p, pairs);
-          else
-            pair_pass<HertzMindlin, false>(table, ctx, p, pairs);
-        }
+        pair_pass<typename Params::Law>(table, ctx, p, pairs, thread, parity);
       },
       laws);
 }

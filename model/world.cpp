@@ -63,15 +63,17 @@ World::World(WorldConfig config, std::vector<Material> materials, LawTable laws,
 // changes a force: a pair or wall contact is computed whenever it touches, and every touching one is listed.
 void World::rebuild_neighbors() {
   if (fluid_) fluid_->mark_stale();  // fluid candidates: no particle has moved skin/2 since this rebuild
-  CandidatePairs c = build_pairs(p_.x, p_.radius, cfg_.skin);
+  search_.build(p_.x, p_.radius, cfg_.skin, candidates_);
 #ifdef PASTEMIX_VALIDATE
   // Expensive check: the cell list must find exactly the brute-force pairs.
-  if (brute_force_pairs(p_.x, p_.radius, cfg_.skin).i.size() != c.i.size())
+  if (brute_force_pairs(p_.x, p_.radius, cfg_.skin).i.size() != candidates_.i.size())
     throw RuntimeFailure(fmt::format("neighbour list at t = {} s disagrees with brute force", t_));
 #endif
-  pairs_.rebuild(c, p_, static_cast<int>(materials_.size()));
+  pairs_.rebuild(candidates_, p_, static_cast<int>(materials_.size()));
   wall_contacts_.rebuild(walls_, p_, t_, cfg_.skin);
   x_at_rebuild_ = p_.x;
+  // The threads' particles and pairs (slabs of the new positions), for the thread count of this build.
+  pairs_.partition(static_cast<long>(p_.size()) >= parallel_min_items ? omp_get_max_threads() : 1, p_.x);
   t_at_rebuild_ = t_;
   ++profile_.rebuilds;
 }
@@ -103,72 +105,141 @@ inline void World::drift_one(long a, double& d2, long& first_bad) {
   d2 = std::max(d2, norm2(x - x_at_rebuild_[a]));
 }
 
-double World::forces(double h, Then then) {
-  StepContext ctx{t_, cfg_.dt, static_cast<int>(materials_.size()), cfg_.rolling};
-  const long n = static_cast<long>(p_.size());
-  const bool parallel = n >= parallel_min_items && omp_get_max_threads() > 1;
-  // One thread: the pair pass sums straight into the particles; several: one output per pair, gathered
-  // below in the same order (same bits).
-  const bool direct = !parallel || static_cast<long>(pairs_.size()) < parallel_min_items;
-  const auto t0 = Clock::now();
-  // Both read positions only (the drift is done), so they go before the region.
-  if (fluid_) fluid_->update(p_);  // fluid hook
-  wall_state_.update(walls_, ctx.t);
+bool World::rebuild_due(double moved2, double t) const {
+  // The lists stay valid while no particle has moved more than skin/2 since their build, and, for the wall
+  // candidates, particle plus wall motion stays below skin/2; a wall's motion is |v| (t - t_build); a
+  // removed wall needs no rebuild (it is skipped when inactive).
+  double wall_move = 0.0;
+  for (const Wall& wall : walls_)
+    wall_move = std::max(wall_move, norm(wall.displacement(t) - wall.displacement(t_at_rebuild_)));
+  const double half = 0.5 * cfg_.skin;
+  return moved2 > half * half || (wall_move > 0.0 && std::sqrt(moved2) + wall_move > half);
+}
+
+long World::passes(long n, double h, bool initial, double& moved2) {
+  const long np = static_cast<long>(p_.size());
+  const int threads = np >= parallel_min_items ? omp_get_max_threads() : 1;
+  if (pairs_.threads != threads) pairs_.partition(threads, p_.x);
+  wall_state_.resize(static_cast<std::size_t>(threads));
+  for (auto& r : results_) r.resize(static_cast<std::size_t>(threads));
   const bool rot = p_.has_rotation;
   const bool roll = cfg_.rolling == RollingLaw::constant_torque;
   const bool has_walls = !walls_.empty();
-  const bool kick = then != Then::nothing, drift = then == Then::kick_drift;
-  double max_d2 = 0.0;
-  long bad = std::numeric_limits<long>::max();
-  Clock::time_point t_mid;
-  // Per particle, in this order: pair forces (gathered, or already summed), wall forces in wall order,
-  // then the half kick (and the next opening half kick and drift): the same operations in the same order
-  // as separate passes, one sweep of memory.
+  const int n_materials = static_cast<int>(materials_.size());
+  long done = 0, drifts = 0;
+  double t_end = t_, d2_end = moved2;
+  long bad_end = std::numeric_limits<long>::max();
+  int parity_end = pairs_.parity;
+  double pair_s = 0.0, particle_s = 0.0, wait_s = 0.0;
   std::visit(
       [&](const auto& table) {
         using Law = typename std::decay_t<decltype(table)>::value_type::Law;
-        auto one = [&](long a, double& d2, long& first_bad) {
-          Vec3 f, t;
-          double rc = 0.0;
-          if (direct) {
-            f = p_.f[a];
-            if (rot) {
-              t = p_.torque[a];
-              rc = p_.rolling_capacity[a];
-            }
-          } else {
-            gather_one(pairs_, static_cast<std::size_t>(a), rot, f, t, rc);
-          }
-          if (has_walls && wall_contacts_.start[a] != wall_contacts_.start[a + 1])
-            wall_forces_one<Law>(table, ctx, walls_, wall_state_, p_, wall_contacts_, static_cast<std::size_t>(a), f, t, rc);
-          p_.f[a] = f;
-          if (rot) {
-            p_.torque[a] = t;
-            p_.rolling_capacity[a] = rc;
-          }
-          if (kick) kick_one(a, h, rot, roll);
-          if (drift) {
-            kick_one(a, h, rot, roll);
-            drift_one(a, d2, first_bad);
-          }
-        };
-        // One region per step: the pair pass ends with the barrier the gather needs; the per-particle
-        // pass's reductions (max and min) are exact in any order.
-#pragma omp parallel if (parallel) reduction(max : max_d2) reduction(min : bad)
+#pragma omp parallel num_threads(threads)
         {
-          compute_pair_forces(laws_, ctx, p_, pairs_, direct);
-#pragma omp master
-          t_mid = Clock::now();
-#pragma omp for schedule(dynamic, 256) nowait
-          for (long a = 0; a < n; ++a) one(a, max_d2, bad);
+          const int me = omp_get_thread_num();
+          const bool master = me == 0;
+          // Thread 0 alone: every particle; several: the thread's own, ascending.
+          const std::uint32_t* own = threads > 1 ? pairs_.own[static_cast<std::size_t>(me)].data() : nullptr;
+          const long n_own = threads > 1 ? static_cast<long>(pairs_.own[static_cast<std::size_t>(me)].size()) : np;
+          WallState& ws = wall_state_[static_cast<std::size_t>(me)];
+          double t = t_;  // every thread advances its own copy: the same additions, the same bits
+          int cur = pairs_.parity;
+          long my_done = 0, my_drifts = 0;
+          double d2_all = moved2;
+          long bad_all = std::numeric_limits<long>::max();
+          for (;;) {
+            auto c0 = Clock::now();
+            // The fluid update reads the positions of every particle (all drifted: the barrier) and must
+            // precede every kick; one thread, then the barrier of `single`.
+            if (fluid_) {
+#pragma omp single
+              fluid_->update(p_);
+            }
+            ws.update(walls_, t);
+            const StepContext ctx{t, cfg_.dt, n_materials, cfg_.rolling};
+            const Then then = initial ? Then::nothing : (my_done + 1 < n ? Then::kick_drift : Then::kick);
+            pair_forces(laws_, ctx, p_, pairs_, me, cur);
+            auto c1 = Clock::now();
+            // Cross pairs read the positions and velocities of the other blocks: nobody kicks before
+            // every pair force is done.
+            if (threads > 1) {
+#pragma omp barrier
+            }
+            auto c1b = Clock::now();
+            if (master) wait_s += std::chrono::duration<double>(c1b - c1).count();
+            c1 = c1b;
+            double d2 = 0.0;
+            long bad = std::numeric_limits<long>::max();
+            // Per owned particle, in this order: pair forces (summed above), wall forces in wall order,
+            // then the half kick (and the next opening half kick and drift): the same operations in the
+            // same order as separate passes, one sweep of memory.
+            for (long q = 0; q < n_own; ++q) {
+              const long a = own ? own[q] : q;
+              if (has_walls && wall_contacts_.start[a] != wall_contacts_.start[a + 1]) {
+                Vec3 f = p_.f[a], tq;
+                double rc = 0.0;
+                if (rot) {
+                  tq = p_.torque[a];
+                  rc = p_.rolling_capacity[a];
+                }
+                wall_forces_one<Law>(table, ctx, walls_, ws, p_, wall_contacts_, static_cast<std::size_t>(a), f, tq, rc);
+                p_.f[a] = f;
+                if (rot) {
+                  p_.torque[a] = tq;
+                  p_.rolling_capacity[a] = rc;
+                }
+              }
+              if (then == Then::nothing) continue;
+              kick_one(a, h, rot, roll);
+              if (then == Then::kick_drift) {
+                kick_one(a, h, rot, roll);
+                drift_one(a, d2, bad);
+              }
+            }
+            auto c2 = Clock::now();
+            ++my_done;
+            cur ^= 1;  // the cross pairs' history just written
+            if (master) {
+              pair_s += std::chrono::duration<double>(c1 - c0).count();
+              particle_s += std::chrono::duration<double>(c2 - c1).count();
+            }
+            if (then != Then::kick_drift) break;  // the end of the region is the barrier
+            // The next step has begun: its positions are needed by every thread, and its displacement and
+            // domain results by the rebuild decision, which every thread takes alike.
+            ++my_drifts;
+            auto& slot = results_[my_done & 1];
+            slot[static_cast<std::size_t>(me)] = {d2, bad};
+#pragma omp barrier
+            if (master) wait_s += std::chrono::duration<double>(Clock::now() - c2).count();
+            d2_all = 0.0;
+            for (const auto& r : slot) {
+              d2_all = std::max(d2_all, r.d2);
+              bad_all = std::min(bad_all, r.bad);
+            }
+            t += cfg_.dt;
+            if (bad_all != std::numeric_limits<long>::max() || rebuild_due(d2_all, t)) break;
+          }
+          if (master) {
+            done = my_done;
+            drifts = my_drifts;
+            t_end = t;
+            d2_end = d2_all;
+            bad_end = bad_all;
+            parity_end = cur;
+          }
         }
       },
       laws_);
-  const auto t1 = Clock::now();
-  profile_.seconds[Profile::contact_forces] += std::chrono::duration<double>(t_mid - t0).count();
-  profile_.seconds[Profile::walls_kick] += std::chrono::duration<double>(t1 - t_mid).count();
-  if (bad != std::numeric_limits<long>::max() && bad_index_ < 0) bad_index_ = bad;
-  return max_d2;
+  pairs_.parity = parity_end;
+  pairs_.sync_cross();
+  t_ = t_end;
+  steps_ += drifts;
+  moved2 = d2_end;
+  if (bad_end != std::numeric_limits<long>::max() && bad_index_ < 0) bad_index_ = bad_end;
+  profile_.seconds[Profile::contact_forces] += pair_s;
+  profile_.seconds[Profile::walls_kick] += particle_s;
+  profile_.seconds[Profile::wait] += wait_s;
+  return done;
 }
 
 // First half kick and drift in one loop, with the domain check and the displacement since the last
@@ -180,7 +251,7 @@ double World::kick_drift(double h) {
   double max_d2 = 0.0;
   long bad = std::numeric_limits<long>::max();
   const bool parallel = n >= parallel_min_items && omp_get_max_threads() > 1;
-#pragma omp parallel for schedule(dynamic, 512) reduction(max : max_d2) reduction(min : bad) if (parallel)
+#pragma omp parallel for schedule(static, 256) reduction(max : max_d2) reduction(min : bad) if (parallel)
   for (long a = 0; a < n; ++a) {
     kick_one(a, h, rot, roll);
     drift_one(a, max_d2, bad);
@@ -189,40 +260,35 @@ double World::kick_drift(double h) {
   return max_d2;
 }
 
+// A step: kick and drift (fused into the previous step's last pass, except at the start of a batch),
+// t += dt, the domain check, a rebuild if due, then the forces at t and the closing half kick.
 void World::advance(long n) {
   if (n <= 0) return;
   const double h = 0.5 * cfg_.dt;
+  double moved2 = 0.0;
   if (!started_) {
     {
       StageTimer timer{profile_.seconds[Profile::neighbor]};
       rebuild_neighbors();
     }
-    forces(h, Then::nothing);
+    passes(1, h, true, moved2);
     started_ = true;
   }
-  double moved2;
   {
     StageTimer timer{profile_.seconds[Profile::kick_drift]};
     moved2 = kick_drift(h);
   }
-  for (long s = 0; s < n; ++s) {
-    t_ += cfg_.dt;
-    ++steps_;
+  t_ += cfg_.dt;
+  ++steps_;
+  for (long left = n; left > 0;) {
     if (bad_index_ >= 0) check();
-    // The lists stay valid while no particle has moved more than skin/2 since their build, and, for the
-    // wall candidates, particle plus wall motion stays below skin/2; a wall's motion is |v| (t - t_build);
-    // a removed wall needs no rebuild (it is skipped when inactive).
-    double wall_move = 0.0;
-    for (const Wall& wall : walls_)
-      wall_move = std::max(wall_move, norm(wall.displacement(t_) - wall.displacement(t_at_rebuild_)));
-    const double half = 0.5 * cfg_.skin;
-    if (moved2 > half * half || (wall_move > 0.0 && std::sqrt(moved2) + wall_move > half)) {
+    if (rebuild_due(moved2, t_)) {
       StageTimer timer{profile_.seconds[Profile::neighbor]};
       rebuild_neighbors();
     }
-    // The last step ends at a consistent state (x, v at t); the others run into the next step's drift.
-    moved2 = forces(h, s + 1 < n ? Then::kick_drift : Then::kick);
+    left -= passes(left, h, false, moved2);
   }
+  if (bad_index_ >= 0) check();
 }
 
 void World::check() const {

@@ -16,13 +16,15 @@
 
 namespace pastemix::model {
 
-// Wall-clock seconds spent per stage (the order is the order of the step): kick_drift = first half kick
-// and drift; neighbor = list rebuilds; contact_forces = the pair pass; walls_kick = the fused per-particle
-// pass (gather of the pair forces, wall forces, closing half kick, and the fluid update before it).
+// Wall-clock seconds spent per stage, as seen by thread 0 (the order is the order of the step):
+// kick_drift = the first half kick and drift of a batch of steps (World::advance; the later ones are fused
+// into walls_kick); neighbor = list rebuilds; contact_forces = the pair pass (and the fluid update before
+// it); walls_kick = the per-particle pass (wall forces, closing half kick, next opening half kick and
+// drift); wait = thread 0 waiting at the step's barrier for the other threads.
 struct Profile {
-  enum Stage { kick_drift, neighbor, contact_forces, walls_kick, output, count };
+  enum Stage { kick_drift, neighbor, contact_forces, walls_kick, wait, output, count };
   static constexpr std::array<const char*, count> names{"kick_drift", "neighbor", "contact_forces",
-                                                        "walls_kick", "output"};
+                                                        "walls_kick", "wait", "output"};
   std::array<double, count> seconds{};
   long rebuilds = 0;
 };
@@ -85,11 +87,14 @@ class World {
   void rebuild_neighbors();
   // What the per-particle pass after the forces does besides summing them.
   enum class Then { nothing, kick, kick_drift };
-  // Pair forces (stage contact_forces), then one fused pass over the particles (stage walls_kick): gather of
-  // the pair forces (several threads), wall forces, then per `then` the closing half kick, or the closing
-  // half kick and the next step's opening half kick and drift. One parallel region with one barrier.
-  // Returns the largest squared displacement since the last rebuild (m2) after a drift, else 0.
-  double forces(double h, Then then);
+  // Force passes in one parallel region, at most `n` of them: per thread, its pair forces, then per owned
+  // particle its wall forces, the closing half kick and (Then::kick_drift, all but the n-th pass) the next
+  // step's opening half kick and drift; then the one barrier of the step. Stops after a pass that leaves
+  // a rebuild due or a particle bad (moved2 = the largest squared displacement since the last rebuild).
+  // initial: one pass without kick (the forces at t = 0). Returns the number of passes.
+  long passes(long n, double h, bool initial, double& moved2);
+  // Whether the lists must be rebuilt at time t, the particles having moved sqrt(moved2) since the last.
+  bool rebuild_due(double moved2, double t) const;
   void kick_one(long a, double h, bool rot, bool roll);
   // Drift of particle a by dt, its domain check and its squared displacement since the last rebuild.
   void drift_one(long a, double& d2, long& first_bad);
@@ -103,7 +108,16 @@ class World {
   std::vector<Wall> walls_;
   PairList pairs_;
   WallContacts wall_contacts_;
-  WallState wall_state_;
+  std::vector<WallState> wall_state_;  // per thread
+  NeighborSearch search_;
+  CandidatePairs candidates_;          // the neighbour search's output, kept for its capacity
+  // Per thread and step parity: largest squared displacement and first bad particle of its block; padded
+  // to a cache line, read by every thread after the step's barrier.
+  struct alignas(64) ThreadResult {
+    double d2 = 0.0;
+    long bad = 0;
+  };
+  std::vector<ThreadResult> results_[2];
   std::vector<Vec3> x_at_rebuild_;
   Profile profile_;
   double t_ = 0.0;
