@@ -40,7 +40,10 @@ void pair_chunk(const std::vector<typename Law::Params>& table, const StepContex
   for (long q = q0; q < q1; ++q) {
     const std::uint32_t k = Part ? ks[q] : static_cast<std::uint32_t>(q);
     const std::uint32_t a = L.i[k], b = L.j[k];
-    const Vec3 d = p.x[b] - p.x[a];
+    // A cross pair reads the other thread's particle from its ghost copy (that thread may already be
+    // kicking and drifting the original).
+    const bool cross_pair = Part && L.cross[k] != PairList::kNone;
+    const Vec3 d = cross_pair ? L.state(b, me, cur).x - L.state(a, me, cur).x : p.x[b] - p.x[a];
     const double rsum = p.radius[a] + p.radius[b];
     const double dist2 = norm2(d);
     const bool touch = !(dist2 >= rsum * rsum);
@@ -51,7 +54,7 @@ void pair_chunk(const std::vector<typename Law::Params>& table, const StepContex
     m += touch;
     if (touch) continue;
     // Not touching: forget the springs (a new contact starts from zero displacement).
-    if (Part && L.cross[k] != PairList::kNone) {
+    if (cross_pair) {
       if (L.owner[a] == me) {
         std::fill_n(&L.cross_hist[cur ^ 1][L.cross[k] * ws], w, 0.0);
         L.touching[k] = 0;
@@ -70,7 +73,8 @@ void pair_chunk(const std::vector<typename Law::Params>& table, const StepContex
     const Vec3 d = sep[q];
     const double rsum = rsums[q];
     double* hist = w ? &L.history[k * ws] : nullptr;
-    if (Part && w && L.cross[k] != PairList::kNone) {
+    const bool cross_pair = Part && L.cross[k] != PairList::kNone;
+    if (cross_pair && w) {
       const double* old = &L.cross_hist[cur][L.cross[k] * ws];
       hist = own_a ? &L.cross_hist[cur ^ 1][L.cross[k] * ws] : scratch;
       std::copy_n(old, w, hist);
@@ -83,11 +87,19 @@ void pair_chunk(const std::vector<typename Law::Params>& table, const StepContex
     const double arm_a = p.radius[a] - 0.5 * g.overlap, arm_b = p.radius[b] - 0.5 * g.overlap;
     g.R_star = L.r_star[k];
     g.m_star = L.m_star[k];
-    g.v_rel = p.v[b] - p.v[a];
+    Vec3 va, vb, wa, wb;
+    if (cross_pair) {
+      const PairList::Ghost &ga = L.state(a, me, cur), &gb = L.state(b, me, cur);
+      va = ga.v, vb = gb.v, wa = ga.w, wb = gb.w;
+    } else {
+      va = p.v[a], vb = p.v[b];
+      if (rot) wa = p.omega[a], wb = p.omega[b];
+    }
+    g.v_rel = vb - va;
     if (rot) {
       // omega_b x (-arm_b n) - omega_a x (arm_a n) = -(arm_a omega_a + arm_b omega_b) x n: one cross.
-      g.v_rel -= cross(p.omega[a] * arm_a + p.omega[b] * arm_b, g.n);
-      if (spring_roll) g.w_rel = p.omega[a] - p.omega[b];
+      g.v_rel -= cross(wa * arm_a + wb * arm_b, g.n);
+      if (spring_roll) g.w_rel = wa - wb;
     }
     g.arm_i = arm_a;
     g.dt = ctx.dt;
@@ -270,6 +282,7 @@ void PairList::partition(int n_threads, const std::vector<Vec3>& x) {
   for (auto& list : mine) list.clear();
   cross.assign(n, kNone);
   cross_pairs.clear();
+  ghosts.clear();
   parity = 0;
   if (n_threads <= 1 || np == 0) return;
   // Slabs across the longest side of the particles' bounding box, of about equal cost: the fewer pairs
@@ -325,9 +338,26 @@ void PairList::partition(int n_threads, const std::vector<Vec3>& x) {
       cross_pairs.push_back(static_cast<std::uint32_t>(k));
     }
   }
+  // Ghosts: every particle of a cross pair.
+  ghost_of.assign(np, kNone);
+  ghosts.clear();
+  for (std::uint32_t k : cross_pairs)
+    for (std::uint32_t q : {i[k], j[k]})
+      if (ghost_of[q] == kNone) {
+        ghost_of[q] = static_cast<std::uint32_t>(ghosts.size());
+        ghosts.push_back(q);
+      }
+  for (auto& g : ghost) g.resize(ghosts.size());
   for (auto& h : cross_hist) h.assign(cross_pairs.size() * ws, 0.0);
   for (std::size_t c = 0; c < cross_pairs.size(); ++c)
     std::copy_n(&history[cross_pairs[c] * ws], ws, &cross_hist[0][c * ws]);
+}
+
+void PairList::fill_ghosts(const Particles& p) {
+  for (std::size_t g = 0; g < ghosts.size(); ++g) {
+    const std::uint32_t q = ghosts[g];
+    ghost[parity][g] = {p.x[q], p.v[q], p.has_rotation ? p.omega[q] : Vec3{}};
+  }
 }
 
 void PairList::sync_cross() {

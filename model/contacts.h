@@ -52,7 +52,19 @@ struct PairList {
   std::vector<std::uint32_t> cross;
   std::vector<std::uint32_t> cross_pairs;  // pair index of each cross slot
   std::vector<double> cross_hist[2];
+  // Ghost copies of the particles of cross pairs (position, velocity, angular velocity), double buffered
+  // like their history: a pass reads ghost[parity]; each thread writes its own particles' new state into
+  // ghost[1 - parity] after their drift. So a thread never reads what another is writing, and a step
+  // needs one barrier (after the drift), as MPI codes exchange ghost atoms once per step.
+  struct Ghost {
+    Vec3 x, v, w;
+  };
+  std::vector<std::uint32_t> ghost_of;  // per particle: its ghost slot, or kNone
+  std::vector<std::uint32_t> ghosts;    // particle of each ghost slot
+  std::vector<Ghost> ghost[2];
   int parity = 0;
+  // The state of particle q as thread `me` sees it during a pass reading buffer `cur`.
+  const Ghost& state(std::uint32_t q, int me, int cur) const { return ghost[cur][ghost_of[q]]; }
 
   std::size_t size() const { return i.size(); }
   // Replaces the pairs by `c`, carrying over the history of pairs present before (c gets the old arrays).
@@ -62,6 +74,8 @@ struct PairList {
   void partition(int threads, const std::vector<Vec3>& x);
   // Copies the cross pairs' history back into `history` (the threads are done).
   void sync_cross();
+  // Sets ghost[parity] from the particles (before the threads start).
+  void fill_ghosts(const Particles& p);
 };
 
 // Per particle: a Verlet list of the walls within radius + skin (most particles have none, so the wall

@@ -120,6 +120,7 @@ long World::passes(long n, double h, bool initial, double& moved2) {
   const long np = static_cast<long>(p_.size());
   const int threads = np >= parallel_min_items ? omp_get_max_threads() : 1;
   if (pairs_.threads != threads) pairs_.partition(threads, p_.x);
+  if (threads > 1) pairs_.fill_ghosts(p_);
   wall_state_.resize(static_cast<std::size_t>(threads));
   for (auto& r : results_) r.resize(static_cast<std::size_t>(threads));
   const bool rot = p_.has_rotation;
@@ -148,7 +149,7 @@ long World::passes(long n, double h, bool initial, double& moved2) {
           double d2_all = moved2;
           long bad_all = std::numeric_limits<long>::max();
           for (;;) {
-            auto c0 = Clock::now();
+            const auto c0 = Clock::now();
             // The fluid update reads the positions of every particle (all drifted: the barrier) and must
             // precede every kick; one thread, then the barrier of `single`.
             if (fluid_) {
@@ -159,15 +160,7 @@ long World::passes(long n, double h, bool initial, double& moved2) {
             const StepContext ctx{t, cfg_.dt, n_materials, cfg_.rolling};
             const Then then = initial ? Then::nothing : (my_done + 1 < n ? Then::kick_drift : Then::kick);
             pair_forces(laws_, ctx, p_, pairs_, me, cur);
-            auto c1 = Clock::now();
-            // Cross pairs read the positions and velocities of the other blocks: nobody kicks before
-            // every pair force is done.
-            if (threads > 1) {
-#pragma omp barrier
-            }
-            auto c1b = Clock::now();
-            if (master) wait_s += std::chrono::duration<double>(c1b - c1).count();
-            c1 = c1b;
+            const auto c1 = Clock::now();
             double d2 = 0.0;
             long bad = std::numeric_limits<long>::max();
             // Per owned particle, in this order: pair forces (summed above), wall forces in wall order,
@@ -194,9 +187,12 @@ long World::passes(long n, double h, bool initial, double& moved2) {
               if (then == Then::kick_drift) {
                 kick_one(a, h, rot, roll);
                 drift_one(a, d2, bad);
+                // The state the other threads read in the next pass (cross pairs).
+                if (threads > 1 && pairs_.ghost_of[a] != PairList::kNone)
+                  pairs_.ghost[cur ^ 1][pairs_.ghost_of[a]] = {p_.x[a], p_.v[a], rot ? p_.omega[a] : Vec3{}};
               }
             }
-            auto c2 = Clock::now();
+            const auto c2 = Clock::now();
             ++my_done;
             cur ^= 1;  // the cross pairs' history just written
             if (master) {
