@@ -52,16 +52,16 @@ void pair_chunk(const std::vector<typename Law::Params>& table, const StepContex
     sep2[m] = dist2;
     rsums[m] = rsum;
     m += touch;
-    if (touch) continue;
-    // Not touching: forget the springs (a new contact starts from zero displacement).
+    // Not touching: forget the springs (a new contact starts from zero displacement). Branch only on the
+    // rare contact that just opened; "touching?" itself is unpredictable.
     if (cross_pair) {
       if (L.owner[a] == me) {
-        std::fill_n(&L.cross_hist[cur ^ 1][L.cross[k] * ws], w, 0.0);
-        L.touching[k] = 0;
+        if (!touch) std::fill_n(&L.cross_hist[cur ^ 1][L.cross[k] * ws], w, 0.0);
+        L.touching[k] = touch;
       }
-    } else if (L.touching[k]) {
-      std::fill_n(&L.history[k * ws], w, 0.0);
-      L.touching[k] = 0;
+    } else {
+      if (!touch && L.touching[k]) std::fill_n(&L.history[k * ws], w, 0.0);
+      L.touching[k] = touch;
     }
   }
   double scratch[HertzMindlin::history_size];
@@ -79,7 +79,6 @@ void pair_chunk(const std::vector<typename Law::Params>& table, const StepContex
       hist = own_a ? &L.cross_hist[cur ^ 1][L.cross[k] * ws] : scratch;
       std::copy_n(old, w, hist);
     }
-    if (!Part || own_a) L.touching[k] = 1;
     const double dist = std::sqrt(sep2[q]);
     typename Law::Geometry g;
     g.n = d * (1.0 / dist);
