@@ -22,6 +22,72 @@ constexpr long kChunk = 256;
 // ([lo, hi)) in ascending pair order. Part: a cross pair (both threads compute it) reads its history from
 // cross_hist[cur]; the owner of i writes the new one into cross_hist[1 - cur] and its touching flag, the
 // other thread works on a private copy.
+// The dense part of pair_chunk for a law with a batch kernel (Hertz-Mindlin with a tangential spring,
+// rotation, no rolling spring): the touching pairs idx[0 .. m) staged kBatch at a time into lanes, computed
+// by Law::force_batch (the same bits as Law::force, several contacts per instruction), then added to the
+// owned particles in ascending pair order, as the scalar loop does.
+template <class Law, bool Part>
+void batch_chunk(const std::vector<typename Law::Params>& table, const StepContext& ctx, Particles& p, PairList& L,
+                 const std::uint32_t* idx, const Vec3* sep, const double* sep2, const double* rsums, long m, int me,
+                 int cur) {
+  const bool constant_roll = ctx.rolling == RollingLaw::constant_torque;
+  typename Law::Batch B;
+  for (long q0 = 0; q0 < m; q0 += Law::kBatch) {
+    const int nb = static_cast<int>(std::min<long>(Law::kBatch, m - q0));
+    for (int e = 0; e < nb; ++e) {
+      const long q = q0 + e;
+      const std::uint32_t k = idx[q];
+      const std::uint32_t a = L.i[k], b = L.j[k];
+      B.dx[e] = sep[q].x, B.dy[e] = sep[q].y, B.dz[e] = sep[q].z;
+      B.dist2[e] = sep2[q];
+      B.rsum[e] = rsums[q];
+      B.ra[e] = p.radius[a], B.rb[e] = p.radius[b];
+      B.r_star[e] = L.r_star[k], B.m_star[e] = L.m_star[k];
+      const auto& prm = table[L.law_index[k]];
+      B.E_star[e] = prm.E_star, B.G_star[e] = prm.G_star, B.damping[e] = prm.damping;
+      B.sqrt_st_over_sn[e] = prm.sqrt_st_over_sn, B.friction[e] = prm.friction;
+      const bool cross_pair = Part && L.cross[k] != PairList::kNone;
+      Vec3 va, vb, wa, wb;
+      const double* h;
+      if (cross_pair) {
+        const PairList::Ghost &ga = L.state(a, cur), &gb = L.state(b, cur);
+        va = ga.v, vb = gb.v, wa = ga.w, wb = gb.w;
+        h = &L.cross_hist[cur][L.cross[k] * 3];
+      } else {
+        va = p.v[a], vb = p.v[b], wa = p.omega[a], wb = p.omega[b];
+        h = &L.history[k * 3];
+      }
+      B.vax[e] = va.x, B.vay[e] = va.y, B.vaz[e] = va.z, B.vbx[e] = vb.x, B.vby[e] = vb.y, B.vbz[e] = vb.z;
+      B.wax[e] = wa.x, B.way[e] = wa.y, B.waz[e] = wa.z, B.wbx[e] = wb.x, B.wby[e] = wb.y, B.wbz[e] = wb.z;
+      B.hx[e] = h[0], B.hy[e] = h[1], B.hz[e] = h[2];
+    }
+    Law::force_batch(B, nb, ctx.dt);
+    for (int e = 0; e < nb; ++e) {
+      const std::uint32_t k = idx[q0 + e];
+      const std::uint32_t a = L.i[k], b = L.j[k];
+      const bool own_a = !Part || L.owner[a] == me;
+      const bool own_b = !Part || L.owner[b] == me;
+      const bool cross_pair = Part && L.cross[k] != PairList::kNone;
+      // The new spring: in place, or (a cross pair) into the next buffer by the owner of i only.
+      double* h = cross_pair ? (own_a ? &L.cross_hist[cur ^ 1][L.cross[k] * 3] : nullptr) : &L.history[k * 3];
+      if (h) h[0] = B.hx[e], h[1] = B.hy[e], h[2] = B.hz[e];
+      const Vec3 force{B.fx[e], B.fy[e], B.fz[e]}, nxt{B.tx[e], B.ty[e], B.tz[e]};
+      const double arm_a = B.arm_a[e], arm_b = B.arm_b[e];
+      const double mu_r = table[L.law_index[k]].rolling_friction;
+      if (own_a) {
+        p.f[a] += force;
+        p.torque[a] += nxt * arm_a;
+        if (constant_roll) p.rolling_capacity[a] += mu_r * B.fn[e] * arm_a;
+      }
+      if (own_b) {
+        p.f[b] -= force;
+        p.torque[b] += nxt * arm_b;
+        if (constant_roll) p.rolling_capacity[b] += mu_r * B.fn[e] * arm_b;
+      }
+    }
+  }
+}
+
 template <class Law, bool Part>
 void pair_chunk(const std::vector<typename Law::Params>& table, const StepContext& ctx, Particles& p, PairList& L,
                 const std::uint32_t* ks, long q0, long q1, int me, int cur) {
@@ -43,7 +109,7 @@ void pair_chunk(const std::vector<typename Law::Params>& table, const StepContex
     // A cross pair reads the other thread's particle from its ghost copy (that thread may already be
     // kicking and drifting the original).
     const bool cross_pair = Part && L.cross[k] != PairList::kNone;
-    const Vec3 d = cross_pair ? L.state(b, me, cur).x - L.state(a, me, cur).x : p.x[b] - p.x[a];
+    const Vec3 d = cross_pair ? L.state(b, cur).x - L.state(a, cur).x : p.x[b] - p.x[a];
     const double rsum = p.radius[a] + p.radius[b];
     const double dist2 = norm2(d);
     const bool touch = !(dist2 >= rsum * rsum);
@@ -62,6 +128,12 @@ void pair_chunk(const std::vector<typename Law::Params>& table, const StepContex
     } else {
       if (!touch && L.touching[k]) std::fill_n(&L.history[k * ws], w, 0.0);
       L.touching[k] = touch;
+    }
+  }
+  if constexpr (requires { Law::force_batch; }) {
+    if (w == 3 && rot && !spring_roll) {
+      batch_chunk<Law, Part>(table, ctx, p, L, idx, sep, sep2, rsums, m, me, cur);
+      return;
     }
   }
   double scratch[HertzMindlin::history_size];
@@ -88,7 +160,7 @@ void pair_chunk(const std::vector<typename Law::Params>& table, const StepContex
     g.m_star = L.m_star[k];
     Vec3 va, vb, wa, wb;
     if (cross_pair) {
-      const PairList::Ghost &ga = L.state(a, me, cur), &gb = L.state(b, me, cur);
+      const PairList::Ghost &ga = L.state(a, cur), &gb = L.state(b, cur);
       va = ga.v, vb = gb.v, wa = ga.w, wb = gb.w;
     } else {
       va = p.v[a], vb = p.v[b];

@@ -63,8 +63,8 @@ struct PairList {
   std::vector<std::uint32_t> ghosts;    // particle of each ghost slot
   std::vector<Ghost> ghost[2];
   int parity = 0;
-  // The state of particle q as thread `me` sees it during a pass reading buffer `cur`.
-  const Ghost& state(std::uint32_t q, int me, int cur) const { return ghost[cur][ghost_of[q]]; }
+  // The state of particle q as the threads see it during a pass reading buffer `cur`.
+  const Ghost& state(std::uint32_t q, int cur) const { return ghost[cur][ghost_of[q]]; }
 
   std::size_t size() const { return i.size(); }
   // Replaces the pairs by `c`, carrying over the history of pairs present before (c gets the old arrays).
