@@ -245,55 +245,69 @@ void WallContacts::rebuild(const std::vector<Wall>& w, const Particles& p, doubl
     shift[k] = w[k].displacement(t);
     active[k] = w[k].active(t);
   }
-  // Candidate flags in parallel (one distance per particle and wall), then the CSR in order.
-  std::vector<char> cand(n * nw, 0);
+  // One region: candidate flags (one distance per particle and wall), the CSR in order (one thread), the
+  // history carry-over, per particle from its old candidates (a few entries). The new lists go into the
+  // spare buffers (capacity kept between rebuilds) and are swapped in.
+  cand_.assign(n * nw, 0);
   const long nn = static_cast<long>(n);
-#pragma omp parallel for schedule(static) if (nn >= parallel_min_items)
-  for (long a = 0; a < nn; ++a) {
-    const double reach = p.radius[a] + skin;
-    for (std::size_t k = 0; k < nw; ++k) {
-      bool candidate = false;
-      // The bound only skips walls that are clearly out of reach (the margin absorbs its round-off).
-      if (active[k] && wall_distance_bound(w[k], shift[k], p.x[a]) < reach * (1.0 + 1e-9)) {
-        Vec3 unused;
-        candidate = wall_distance(w[k], shift[k], p.x[a], &unused) < reach;
+  const std::size_t wd = static_cast<std::size_t>(width);
+  std::vector<std::uint32_t>& new_start = spare_start_;
+  std::vector<std::uint16_t>& new_near = spare_near_;
+  std::vector<double>& new_hist = spare_hist_;
+  std::vector<std::uint32_t>& new_touch = spare_touch_;
+#pragma omp parallel if (nn >= parallel_min_items)
+  {
+#pragma omp for schedule(static)
+    for (long a = 0; a < nn; ++a) {
+      const double reach = p.radius[a] + skin;
+      for (std::size_t k = 0; k < nw; ++k) {
+        bool candidate = false;
+        // The bound only skips walls that are clearly out of reach (the margin absorbs its round-off).
+        if (active[k] && wall_distance_bound(w[k], shift[k], p.x[a]) < reach * (1.0 + 1e-9)) {
+          Vec3 unused;
+          candidate = wall_distance(w[k], shift[k], p.x[a], &unused) < reach;
+        }
+        cand_[static_cast<std::size_t>(a) * nw + k] = candidate;
       }
-      cand[static_cast<std::size_t>(a) * nw + k] = candidate;
+    }
+#pragma omp single
+    {
+      new_start.assign(n + 1, 0);
+      new_near.clear();
+      for (std::size_t a = 0; a < n; ++a) {
+        for (std::size_t k = 0; k < nw; ++k)
+          if (cand_[a * nw + k]) new_near.push_back(static_cast<std::uint16_t>(k));
+        new_start[a + 1] = static_cast<std::uint32_t>(new_near.size());
+      }
+      new_hist.assign(new_near.size() * wd, 0.0);
+      new_touch.assign(new_near.size(), 0);
+    }
+#pragma omp for schedule(static)
+    for (long a = 0; a < nn; ++a) {
+      for (std::uint32_t c = new_start[a]; c < new_start[a + 1]; ++c)
+        for (std::uint32_t o = start[a]; o < start[a + 1]; ++o) {
+          if (near[o] != new_near[c]) continue;
+          if (touching[o]) {
+            new_touch[c] = 1;
+            std::copy_n(&history[o * wd], wd, &new_hist[c * wd]);
+          }
+          break;
+        }
     }
   }
-  std::vector<std::uint32_t> new_start(n + 1, 0);
-  std::vector<std::uint16_t> new_near;
-  for (std::size_t a = 0; a < n; ++a) {
-    for (std::size_t k = 0; k < nw; ++k)
-      if (cand[a * nw + k]) new_near.push_back(static_cast<std::uint16_t>(k));
-    new_start[a + 1] = static_cast<std::uint32_t>(new_near.size());
-  }
-  // History carry-over, per particle from its old candidates (a few entries).
-  const std::size_t wd = static_cast<std::size_t>(width);
-  std::vector<double> new_hist(new_near.size() * wd, 0.0);
-  std::vector<std::uint32_t> new_touch(new_near.size(), 0);
-#pragma omp parallel for schedule(static) if (nn >= parallel_min_items)
-  for (long a = 0; a < nn; ++a) {
-    for (std::uint32_t c = new_start[a]; c < new_start[a + 1]; ++c)
-      for (std::uint32_t o = start[a]; o < start[a + 1]; ++o) {
-        if (near[o] != new_near[c]) continue;
-        if (touching[o]) {
-          new_touch[c] = 1;
-          std::copy_n(&history[o * wd], wd, &new_hist[c * wd]);
-        }
-        break;
-      }
-  }
-  start = std::move(new_start);
-  near = std::move(new_near);
-  history = std::move(new_hist);
-  touching = std::move(new_touch);
+  start.swap(new_start);
+  near.swap(new_near);
+  history.swap(new_hist);
+  touching.swap(new_touch);
 }
 
 void PairList::rebuild(CandidatePairs& c, const Particles& p, int n_materials) {
   const std::size_t n = c.i.size();
-  std::vector<double> new_hist(n * static_cast<std::size_t>(width), 0.0);
-  std::vector<std::uint32_t> new_touch(n, 0);
+  // The new history and flags go into the spare buffers (their capacity kept between rebuilds).
+  std::vector<double>& new_hist = spare_hist;
+  std::vector<std::uint32_t>& new_touch = spare_touch;
+  new_hist.assign(n * static_cast<std::size_t>(width), 0.0);
+  new_touch.assign(n, 0);
   r_star.resize(n);
   m_star.resize(n);
   law_index.resize(n);
@@ -311,8 +325,7 @@ void PairList::rebuild(CandidatePairs& c, const Particles& p, int n_materials) {
     law_index[k] = static_cast<std::uint32_t>(p.material[a] * n_materials + p.material[b]);
     if (!carry) continue;
     for (std::uint32_t e = start[a]; e < start[a + 1]; ++e) {
-      if (entry[e] & 1u) continue;  // a is j of that old pair: not (a, b) with a < b
-      const std::uint32_t old = entry[e] >> 1;
+      const std::uint32_t old = entry[e];
       if (j[old] != b) continue;
       if (touching[old]) {
         new_touch[k] = 1;
@@ -324,23 +337,19 @@ void PairList::rebuild(CandidatePairs& c, const Particles& p, int n_materials) {
   }
   i.swap(c.i);
   j.swap(c.j);
-  history = std::move(new_hist);
-  touching = std::move(new_touch);
+  history.swap(new_hist);
+  touching.swap(new_touch);
   threads = 0;  // partition() again
-  // CSR per particle, entries in ascending pair order.
+  // CSR by first particle (the carry-over at the next rebuild looks up (a, b) among the pairs with i = a):
+  // count, prefix sums, fill with start as the cursor, shift back by one.
   const std::size_t np = p.size();
   start.assign(np + 1, 0);
-  for (std::size_t k = 0; k < n; ++k) {
-    ++start[i[k] + 1];
-    ++start[j[k] + 1];
-  }
+  for (std::size_t k = 0; k < n; ++k) ++start[i[k] + 1];
   for (std::size_t q = 0; q < np; ++q) start[q + 1] += start[q];
-  entry.resize(2 * n);
-  std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
-  for (std::size_t k = 0; k < n; ++k) {
-    entry[fill[i[k]]++] = static_cast<std::uint32_t>(2 * k);
-    entry[fill[j[k]]++] = static_cast<std::uint32_t>(2 * k + 1);
-  }
+  entry.resize(n);
+  for (std::size_t k = 0; k < n; ++k) entry[start[i[k]]++] = static_cast<std::uint32_t>(k);
+  for (std::size_t q = np; q >= 1; --q) start[q] = start[q - 1];
+  start[0] = 0;
 }
 
 void PairList::partition(int n_threads, const std::vector<Vec3>& x) {

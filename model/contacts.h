@@ -36,9 +36,11 @@ struct PairList {
   std::vector<std::uint32_t> law_index;  // material[i] * n_materials + material[j]: the law table entry
   std::vector<double> history;         // width per pair
   std::vector<std::uint32_t> touching;  // 0/1; not uint8: a char store may alias anything and forces reloads
-  // CSR: for particle p, entries [start[p], start[p+1]) of `entry` = pair * 2 + (0 if p is i, 1 if j),
-  // in ascending pair order (the history carry-over at rebuilds, the partition's cost).
+  // CSR by first particle: the pairs with i = p are entry[start[p] .. start[p+1]), ascending (the history
+  // carry-over at rebuilds).
   std::vector<std::uint32_t> start, entry;
+  std::vector<double> spare_hist;          // rebuild() builds the new history here, then swaps
+  std::vector<std::uint32_t> spare_touch;
 
   // Partition for `threads` threads (0: none yet; rebuild() resets it): thread t owns the particles
   // own[t] (ascending; owner[a] = t) and computes the pairs mine[t] (ascending). cross[k] indexes the pairs
@@ -93,6 +95,12 @@ struct WallContacts {
   // Rebuilds the candidate lists at time t (walls at their positions then), carrying over the history of
   // candidates that stay; a (particle, wall) that is no longer a candidate is not touching, so it has none.
   void rebuild(const std::vector<Wall>& walls, const Particles& p, double t, double skin);
+
+ private:
+  std::vector<char> cand_;  // rebuild(): per particle and wall, candidate or not
+  std::vector<std::uint32_t> spare_start_, spare_touch_;
+  std::vector<std::uint16_t> spare_near_;
+  std::vector<double> spare_hist_;
 };
 
 struct StepContext {

@@ -36,29 +36,36 @@ void NeighborSearch::build(const std::vector<Vec3>& x, const std::vector<double>
   const std::size_t nchunks = (n + kFinders - 1) / kFinders;
   if (chunks_.size() < nchunks) chunks_.resize(nchunks);
   offset_.assign(nchunks + 1, 0);
-  double lox = x[0].x, loy = x[0].y, loz = x[0].z, hix = lox, hiy = loy, hiz = loz, rmin = radius[0];
-  int nlev = 1;
+  double lox = x[0].x, loy = x[0].y, loz = x[0].z, hix = lox, hiy = loy, hiz = loz;
   Vec3 lo;
-  // One parallel region; the serial parts (grid set-up, counting sort, offsets) are `single`.
+  // One parallel region with three barriers (on this 2-core VM a sleeping thread takes tens of us to wake,
+  // and a pour rebuilds every ~8 steps): the bounding box in parallel, the set-up in one thread (size
+  // levels, grids, counting sort: linear, a fraction of the search), the search in parallel, then the
+  // concatenation in one thread.
 #pragma omp parallel num_threads(nthreads)
   {
-#pragma omp for reduction(min : lox, loy, loz, rmin) reduction(max : hix, hiy, hiz)
+#pragma omp for reduction(min : lox, loy, loz) reduction(max : hix, hiy, hiz)
     for (long k = 0; k < nn; ++k) {
       lox = std::min(lox, x[k].x), loy = std::min(loy, x[k].y), loz = std::min(loz, x[k].z);
       hix = std::max(hix, x[k].x), hiy = std::max(hiy, x[k].y), hiz = std::max(hiz, x[k].z);
-      rmin = std::min(rmin, radius[k]);
-    }
-    // Size classes of a factor 2 in radius: level = floor(log2(r / r_min)). One level for ratios < 2.
-#pragma omp for reduction(max : nlev)
-    for (long k = 0; k < nn; ++k) {
-      level_of_[k] = std::min(30, static_cast<int>(std::floor(std::log2(radius[k] / rmin))));
-      nlev = std::max(nlev, level_of_[k] + 1);
     }
 #pragma omp single
     {
       lo = {lox, loy, loz};
       const Vec3 hi{hix, hiy, hiz};
-      lev_.resize(static_cast<std::size_t>(nlev));
+      // Size classes of a factor 2 in radius: level = floor(log2(r / r_min)); one level for ratios < 2.
+      // Radii do not change during a run: recomputed only when they differ from the last build's.
+      if (radius_ != radius) {
+        radius_ = radius;
+        double rmin = radius[0];
+        for (double r : radius) rmin = std::min(rmin, r);
+        nlev_ = 1;
+        for (std::size_t k = 0; k < n; ++k) {
+          level_of_[k] = std::min(30, static_cast<int>(std::floor(std::log2(radius[k] / rmin))));
+          nlev_ = std::max(nlev_, level_of_[k] + 1);
+        }
+      }
+      lev_.resize(static_cast<std::size_t>(nlev_));
       for (Level& L : lev_) {
         L.rmax = 0.0;
         L.count = 0;
@@ -88,36 +95,28 @@ void NeighborSearch::build(const std::vector<Vec3>& x, const std::vector<double>
         L.inv = 1.0 / L.cell;
         L.start.assign(static_cast<std::size_t>(L.dim[0] * L.dim[1] * L.dim[2]) + 1, 0);
       }
-    }
-#pragma omp for
-    for (long k = 0; k < nn; ++k) {
-      const Level& L = lev_[static_cast<std::size_t>(level_of_[k])];
-      cell_id_[k] = static_cast<std::uint32_t>(L.index(L.clamp_cell(x[k].x - lo.x, 0), L.clamp_cell(x[k].y - lo.y, 1),
-                                                       L.clamp_cell(x[k].z - lo.z, 2)));
-    }
-#pragma omp single
-    {
       // Counting sort per level, stable (ascending index inside a cell): count into start[c + 1], prefix
       // sums, fill with start[c] as the cursor, then shift start back by one cell.
-      for (std::size_t k = 0; k < n; ++k) ++lev_[static_cast<std::size_t>(level_of_[k])].start[cell_id_[k] + 1];
+      for (std::size_t k = 0; k < n; ++k) {
+        Level& L = lev_[static_cast<std::size_t>(level_of_[k])];
+        cell_id_[k] = static_cast<std::uint32_t>(L.index(L.clamp_cell(x[k].x - lo.x, 0), L.clamp_cell(x[k].y - lo.y, 1),
+                                                         L.clamp_cell(x[k].z - lo.z, 2)));
+        ++L.start[cell_id_[k] + 1];
+      }
       for (Level& L : lev_)
         for (std::size_t c = 0; c + 1 < L.start.size(); ++c) L.start[c + 1] += L.start[c];
       for (std::size_t k = 0; k < n; ++k) {
         Level& L = lev_[static_cast<std::size_t>(level_of_[k])];
         const std::uint32_t s = L.start[cell_id_[k]]++;
         L.sorted[s] = static_cast<std::uint32_t>(k);
+        L.xs[s] = x[k];
+        L.rs[s] = radius[k];
         slot_[k] = s;
       }
       for (Level& L : lev_) {
         for (std::size_t c = L.start.size() - 1; c >= 1; --c) L.start[c] = L.start[c - 1];
         L.start[0] = 0;
       }
-    }
-#pragma omp for
-    for (long k = 0; k < nn; ++k) {
-      Level& L = lev_[static_cast<std::size_t>(level_of_[k])];
-      L.xs[slot_[k]] = x[k];
-      L.rs[slot_[k]] = radius[k];
     }
 
 #pragma omp for schedule(dynamic, 1)
@@ -184,16 +183,15 @@ void NeighborSearch::build(const std::vector<Vec3>& x, const std::vector<double>
       }
       ch.n = m;
     }
-#pragma omp single
+#pragma omp single nowait
     {
       for (std::size_t c = 0; c < nchunks; ++c) offset_[c + 1] = offset_[c] + chunks_[c].n;
       out.i.resize(offset_[nchunks]);
       out.j.resize(offset_[nchunks]);
-    }
-#pragma omp for schedule(dynamic, 4)
-    for (std::size_t c = 0; c < nchunks; ++c) {
-      std::copy_n(chunks_[c].i.data(), chunks_[c].n, out.i.data() + offset_[c]);
-      std::copy_n(chunks_[c].j.data(), chunks_[c].n, out.j.data() + offset_[c]);
+      for (std::size_t c = 0; c < nchunks; ++c) {
+        std::copy_n(chunks_[c].i.data(), chunks_[c].n, out.i.data() + offset_[c]);
+        std::copy_n(chunks_[c].j.data(), chunks_[c].n, out.j.data() + offset_[c]);
+      }
     }
   }
 }

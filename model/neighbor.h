@@ -57,6 +57,8 @@ class NeighborSearch {
     std::size_t n = 0;
   };
   std::vector<Level> lev_;
+  std::vector<double> radius_;  // the radii level_of_ was computed for
+  int nlev_ = 1;
   std::vector<int> level_of_;
   std::vector<std::uint32_t> cell_id_, slot_;  // slot_[k]: k's position in its level's `sorted`
   std::vector<Chunk> chunks_;
