@@ -116,7 +116,7 @@ TEST_CASE("Hertz-Mindlin batch kernel: the same bits as force(), lane by lane (s
     g.v_rel -= cross(c.wa * arm_a + c.wb * arm_b, g.n);
     g.arm_i = arm_a;
     g.dt = dt;
-    double h[3] = {c.h.x, c.h.y, c.h.z};
+    double h[HertzMindlin::history_size] = {c.h.x, c.h.y, c.h.z};
     const auto r = HertzMindlin::force(prm[c.law], g, h, 3);
     const Vec3 nxt = cross(g.n, r.tangential_i);
     slips += norm(r.tangential_i) >= prm[c.law].friction * r.normal_force * (1 - 1e-12);
