@@ -3,9 +3,15 @@
 //
 //   1. integration:  v += dt/2 a(t);  omega likewise;  x += dt v            (velocity Verlet, first half)
 //   2. neighbor:     rebuild the Verlet pair list if some particle moved > skin/2 since the last build
-//   3. contacts:     one force per pair (law dispatched once, std::visit), then a per-particle gather
+//   3. contacts:     pair forces, summed per particle in ascending pair order
 //   4. walls:        per particle, in wall order, at the walls' positions at t + dt
 //   5. integration:  v += dt/2 a(t + dt);  omega likewise
+//
+// advance(n) runs n steps with one parallel region per stretch between rebuilds: each thread owns a slab
+// of particles (PairList::partition) and does 3-5 for its own particles, and in the same sweep 1 of the
+// next step; then the one barrier of the step (the positions of every particle are needed for the next
+// pair forces, and the displacements for the rebuild decision). Pairs across two slabs are computed by
+// both threads from ghost copies (contacts.h).
 //
 // Velocity-dependent forces (dashpots, the tangential spring increment) use the half-step velocities, as
 // LIGGGHTS does; the scheme is second order for the conservative part. Rotation is integrated only when
@@ -18,10 +24,11 @@
 // Fluid hook (model/fluid/field.h, only with [[fluid]]): after the forces at t + dt, fluid->update() finds
 // the particles in a region and their submerged volumes (and raises the surface); the half kicks of those
 // particles are replaced by the fluid kick (buoyancy + drag integrated stably, never reversing v). Timed
-// into the integration stage.
+// into the contact_forces stage (one thread, before the pair pass).
 //
-// Every pass writes outputs indexed by the loop variable only (no atomics, no reductions into shared
-// sums), so the trajectory is bitwise identical for any thread count.
+// No atomics and no reductions into shared sums: a particle's force is summed by its owner over its pairs
+// in ascending pair order, as with one thread, so the trajectory is bitwise identical for any thread
+// count (and for any batching of steps into advance()).
 #include "model/world.h"
 
 #include <chrono>
