@@ -102,6 +102,37 @@ inline void World::kick_one(long a, double h, bool rot, bool roll) {
   }
 }
 
+// The closing half kick of a step and the opening half kick of the next (the same force): kick_one twice,
+// with the shared factors computed once and v, omega kept in registers in between (the same bits).
+inline void World::kick_twice(long a, double h, bool rot, bool roll) {
+  if (fluid_ && fluid_->inside(a)) {
+    kick_one(a, h, rot, roll);
+    kick_one(a, h, rot, roll);
+    return;
+  }
+  const Vec3 dv = (p_.f[a] * p_.inv_mass[a] + cfg_.gravity) * h;
+  Vec3 v = p_.v[a];
+  v += dv;
+  v += dv;
+  p_.v[a] = v;
+  if (rot) {
+    const Vec3 dw = p_.torque[a] * (h * p_.inv_inertia[a]);
+    Vec3 w = p_.omega[a];
+    if (roll && p_.rolling_capacity[a] > 0.0) {
+      const double stop = h * p_.rolling_capacity[a] * p_.inv_inertia[a];  // rad/s the friction can remove
+      for (int k = 0; k < 2; ++k) {
+        w = w + dw;
+        const double len = norm(w);
+        w = len <= stop ? Vec3{} : w * (1.0 - stop / len);
+      }
+    } else {
+      w = w + dw;
+      w = w + dw;
+    }
+    p_.omega[a] = w;
+  }
+}
+
 inline void World::drift_one(long a, double& d2, long& first_bad) {
   p_.x[a] += p_.v[a] * cfg_.dt;
   const Vec3& x = p_.x[a];
@@ -190,9 +221,10 @@ long World::passes(long n, double h, bool initial, double& moved2) {
                 }
               }
               if (then == Then::nothing) continue;
-              kick_one(a, h, rot, roll);
-              if (then == Then::kick_drift) {
+              if (then == Then::kick) {
                 kick_one(a, h, rot, roll);
+              } else {
+                kick_twice(a, h, rot, roll);
                 drift_one(a, d2, bad);
                 // The state the other threads read in the next pass (cross pairs).
                 if (threads > 1 && pairs_.ghost_of[a] != PairList::kNone)

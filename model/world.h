@@ -96,6 +96,7 @@ class World {
   // Whether the lists must be rebuilt at time t, the particles having moved sqrt(moved2) since the last.
   bool rebuild_due(double moved2, double t) const;
   void kick_one(long a, double h, bool rot, bool roll);
+  void kick_twice(long a, double h, bool rot, bool roll);
   // Drift of particle a by dt, its domain check and its squared displacement since the last rebuild.
   void drift_one(long a, double& d2, long& first_bad);
   // First half kick and drift; returns the largest squared displacement since the last rebuild (m2).
