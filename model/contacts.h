@@ -1,10 +1,15 @@
 // SPDX-License-Identifier: MIT
 // Contacts: the particle-pair list (SoA), its history, and the two force passes.
 //
-// Determinism without atomics: the pair pass writes one force (and the two torques) per pair into the
-// SoA; the gather pass then sums, per particle, its pairs in ascending pair order through a CSR index.
-// Both passes are parallel over independent outputs, so the result is bitwise the same for any number of
-// threads. Wall contacts are computed per particle (a particle owns its wall contacts), in wall order.
+// Determinism without atomics (several threads): the particles are split into contiguous blocks, one per
+// thread, balanced by their pair counts at each rebuild. A thread computes every pair that has a particle
+// in its block, in ascending pair order, and adds the force only to its own particles: each particle's sum
+// runs over its pairs in ascending pair order, exactly the one-thread order, so the bits do not depend on
+// the thread count. A pair across two blocks is computed by both threads (as LIGGGHTS computes pairs
+// across a domain cut on both ranks with `newton off`); no per-pair outputs, no gather pass, and a step
+// needs one barrier. Its history is double buffered (read from one buffer, written by the owner of i into
+// the other) so that the second thread never reads a spring the first has already advanced. Wall
+// contacts are computed per particle by its owner, in wall order.
 //
 // History (tangential spring, rolling spring) belongs to the pair of particles (dense indices, stable for
 // the whole run) and is carried from the old list to the new one at every neighbour rebuild, so a lasting
@@ -31,25 +36,48 @@ struct PairList {
   std::vector<std::uint32_t> law_index;  // material[i] * n_materials + material[j]: the law table entry
   std::vector<double> history;         // width per pair
   std::vector<std::uint32_t> touching;  // 0/1; not uint8: a char store may alias anything and forces reloads
-  // CSR: for particle p, entries [start[p], start[p+1]) of `entry` = pair * 2 + (0 if p is i, 1 if j),
-  // in ascending pair order.
+  // CSR by first particle: the pairs with i = p are entry[start[p] .. start[p+1]), ascending (the history
+  // carry-over at rebuilds).
   std::vector<std::uint32_t> start, entry;
-  // What a pair contributes to one of its particles, stored at that particle's CSR entry (slot_i[k],
-  // slot_j[k] for pair k), so that the gather of several threads reads each particle's contributions as
-  // one contiguous run. j's force is stored negated: f + (-F) is exactly f - F. Slots of pairs that are
-  // not touching hold zeros (cleared when a contact opens and at rebuilds); adding +0 leaves a sum that
-  // started at +0 unchanged, so the gather equals the one-thread sum bit for bit.
-  struct Slot {
-    Vec3 f;            // N
-    Vec3 t;            // N.m (rotation only)
-    double roll = 0.0; // N.m, constant-torque rolling capacity (rotation only)
+  std::vector<double> spare_hist;          // rebuild() builds the new history here, then swaps
+  std::vector<std::uint32_t> spare_touch;
+
+  // Partition for `threads` threads (0: none yet; rebuild() resets it): thread t owns the particles
+  // own[t] (ascending; owner[a] = t) and computes the pairs mine[t] (ascending). cross[k] indexes the pairs
+  // across two threads' particles (kNone otherwise); their history lives in cross_hist[parity] while the
+  // threads run and is copied back into `history` by sync_cross().
+  static constexpr std::uint32_t kNone = 0xffffffffu;
+  int threads = 0;
+  std::vector<std::uint8_t> owner;
+  std::vector<std::vector<std::uint32_t>> own;
+  std::vector<std::vector<std::uint32_t>> mine;
+  std::vector<std::uint32_t> cross;
+  std::vector<std::uint32_t> cross_pairs;  // pair index of each cross slot
+  std::vector<double> cross_hist[2];
+  // Ghost copies of the particles of cross pairs (position, velocity, angular velocity), double buffered
+  // like their history: a pass reads ghost[parity]; each thread writes its own particles' new state into
+  // ghost[1 - parity] after their drift. So a thread never reads what another is writing, and a step
+  // needs one barrier (after the drift), as MPI codes exchange ghost atoms once per step.
+  struct Ghost {
+    Vec3 x, v, w;
   };
-  std::vector<Slot> slots;
-  std::vector<std::uint32_t> slot_i, slot_j;
+  std::vector<std::uint32_t> ghost_of;  // per particle: its ghost slot, or kNone
+  std::vector<std::uint32_t> ghosts;    // particle of each ghost slot
+  std::vector<Ghost> ghost[2];
+  int parity = 0;
+  // The state of particle q as the threads see it during a pass reading buffer `cur`.
+  const Ghost& state(std::uint32_t q, int cur) const { return ghost[cur][ghost_of[q]]; }
 
   std::size_t size() const { return i.size(); }
-  // Replaces the pairs by `c`, carrying over the history of pairs present before.
-  void rebuild(const CandidatePairs& c, const Particles& p, int n_materials);
+  // Replaces the pairs by `c`, carrying over the history of pairs present before (c gets the old arrays).
+  void rebuild(CandidatePairs& c, const Particles& p, int n_materials);
+  // Splits the particles (positions x) into `threads` slabs of about equal cost (particles, pairs,
+  // touching pairs) across the longest side of their bounding box.
+  void partition(int threads, const std::vector<Vec3>& x);
+  // Copies the cross pairs' history back into `history` (the threads are done).
+  void sync_cross();
+  // Sets ghost[parity] from the particles (before the threads start).
+  void fill_ghosts(const Particles& p);
 };
 
 // Per particle: a Verlet list of the walls within radius + skin (most particles have none, so the wall
@@ -67,6 +95,12 @@ struct WallContacts {
   // Rebuilds the candidate lists at time t (walls at their positions then), carrying over the history of
   // candidates that stay; a (particle, wall) that is no longer a candidate is not touching, so it has none.
   void rebuild(const std::vector<Wall>& walls, const Particles& p, double t, double skin);
+
+ private:
+  std::vector<char> cand_;  // rebuild(): per particle and wall, candidate or not
+  std::vector<std::uint32_t> spare_start_, spare_touch_;
+  std::vector<std::uint16_t> spare_near_;
+  std::vector<double> spare_hist_;
 };
 
 struct StepContext {
@@ -76,27 +110,11 @@ struct StepContext {
   RollingLaw rolling = RollingLaw::none;
 };
 
-// Pair forces. direct = true (one thread): summed straight into p.f / p.torque / p.rolling_capacity
-// (overwriting them) in ascending pair order. direct = false: each touching pair writes its two gather
-// slots (pairs.slots), summed per particle by gather_one() (the same order, so the same bits). The law is
-// chosen once here with std::visit.
-void compute_pair_forces(const LawTable& laws, const StepContext& ctx, Particles& p, PairList& pairs, bool direct);
-
-// Sum of the pair contributions of particle a in ascending pair order (the order the direct pass adds
-// them in).
-inline void gather_one(const PairList& L, std::size_t a, bool rot, Vec3& f, Vec3& t, double& roll) {
-  f = Vec3{};
-  t = Vec3{};
-  roll = 0.0;
-  for (std::uint32_t e = L.start[a]; e < L.start[a + 1]; ++e) {
-    const PairList::Slot& o = L.slots[e];
-    f += o.f;
-    if (rot) {
-      t += o.t;
-      roll += o.roll;
-    }
-  }
-}
+// Pair forces of thread `thread`'s particles (pairs.partition() done for pairs.threads threads; all of
+// them with one thread): their force, torque and rolling capacity are overwritten with the sums over their
+// pairs in ascending pair order. Cross pairs read the history from cross_hist[parity] and write
+// cross_hist[1 - parity]. The law is chosen once here with std::visit.
+void pair_forces(const LawTable& laws, const StepContext& ctx, Particles& p, PairList& pairs, int thread, int parity);
 
 // The walls at the time the forces are evaluated, computed once per step.
 struct WallState {

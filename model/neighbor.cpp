@@ -2,7 +2,9 @@
 #include "model/neighbor.h"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
+#include <cstdint>
 
 #include <omp.h>
 
@@ -12,165 +14,192 @@ namespace pastemix::model {
 
 namespace {
 
-// Own cell first, then the 13 neighbour cells "after" it in (z, y, x) order.
-constexpr long kStencil[14][3] = {{0, 0, 0},   {1, 0, 0},   {-1, 1, 0}, {0, 1, 0},  {1, 1, 0},
-                                  {-1, -1, 1}, {0, -1, 1},  {1, -1, 1}, {-1, 0, 1}, {0, 0, 1},
-                                  {1, 0, 1},   {-1, 1, 1},  {0, 1, 1},  {1, 1, 1}};
+constexpr std::size_t kFinders = 256;  // finder particles per chunk of the search
 
 }  // namespace
 
-namespace {
+long NeighborSearch::Level::clamp_cell(double v, int axis) const {
+  return std::clamp(static_cast<long>(std::floor(v * inv)), 0L, dim[axis] - 1);
+}
 
-// One grid level: the particles whose radius falls in one size class, counting-sorted into cells of
-// 2 r_max(level) + skin.
-struct Level {
-  double rmax = 0.0, cell = 0.0, inv = 0.0;
-  long dim[3] = {1, 1, 1};
-  std::vector<std::uint32_t> start, sorted;
-  // Positions and radii in cell order: the search scans them contiguously (the same pairs in the same order
-  // as through `sorted`, fewer cache misses).
-  std::vector<Vec3> xs;
-  std::vector<double> rs;
-
-  long clamp_cell(double v, int axis) const {
-    return std::clamp(static_cast<long>(std::floor(v * inv)), 0L, dim[axis] - 1);
-  }
-  std::size_t index(long cx, long cy, long cz) const {
-    return static_cast<std::size_t>((cz * dim[1] + cy) * dim[0] + cx);
-  }
-};
-
-}  // namespace
-
-CandidatePairs build_pairs(const std::vector<Vec3>& x, const std::vector<double>& radius, double skin) {
-  CandidatePairs out;
+void NeighborSearch::build(const std::vector<Vec3>& x, const std::vector<double>& radius, double skin,
+                           CandidatePairs& out) {
   const std::size_t n = x.size();
-  if (n < 2) return out;
-  Vec3 lo = x[0], hi = x[0];
-  double rmin = radius[0];
-  for (std::size_t k = 0; k < n; ++k) {
-    lo = {std::min(lo.x, x[k].x), std::min(lo.y, x[k].y), std::min(lo.z, x[k].z)};
-    hi = {std::max(hi.x, x[k].x), std::max(hi.y, x[k].y), std::max(hi.z, x[k].z)};
-    rmin = std::min(rmin, radius[k]);
-  }
-  // Size classes of a factor 2 in radius: level = floor(log2(r / r_min)). One level for ratios < 2.
-  std::vector<int> level_of(n);
-  int nlev = 1;
-  for (std::size_t k = 0; k < n; ++k) {
-    level_of[k] = std::min(30, static_cast<int>(std::floor(std::log2(radius[k] / rmin))));
-    nlev = std::max(nlev, level_of[k] + 1);
-  }
-  std::vector<Level> lev(static_cast<std::size_t>(nlev));
-  std::vector<std::size_t> count(static_cast<std::size_t>(nlev), 0);
-  for (std::size_t k = 0; k < n; ++k) {
-    Level& L = lev[static_cast<std::size_t>(level_of[k])];
-    L.rmax = std::max(L.rmax, radius[k]);
-    ++count[static_cast<std::size_t>(level_of[k])];
-  }
-  std::vector<std::uint32_t> cell_id(n);
-  for (int l = 0; l < nlev; ++l) {
-    Level& L = lev[static_cast<std::size_t>(l)];
-    if (count[static_cast<std::size_t>(l)] == 0) continue;
-    L.cell = 2.0 * L.rmax + skin;
-    // A sparse cloud must not allocate a huge grid: grow the cells until there are at most ~4 per particle.
-    auto cells = [&](double c) {
-      L.dim[0] = static_cast<long>((hi.x - lo.x) / c) + 1;
-      L.dim[1] = static_cast<long>((hi.y - lo.y) / c) + 1;
-      L.dim[2] = static_cast<long>((hi.z - lo.z) / c) + 1;
-      return static_cast<double>(L.dim[0]) * static_cast<double>(L.dim[1]) * static_cast<double>(L.dim[2]);
-    };
-    while (cells(L.cell) > 4.0 * static_cast<double>(count[static_cast<std::size_t>(l)]) + 64.0) L.cell *= 1.5;
-    L.inv = 1.0 / L.cell;
-    L.start.assign(static_cast<std::size_t>(L.dim[0] * L.dim[1] * L.dim[2]) + 1, 0);
-  }
-  // Counting sort per level (stable: ascending index inside a cell).
-  for (std::size_t k = 0; k < n; ++k) {
-    Level& L = lev[static_cast<std::size_t>(level_of[k])];
-    cell_id[k] = static_cast<std::uint32_t>(L.index(L.clamp_cell(x[k].x - lo.x, 0), L.clamp_cell(x[k].y - lo.y, 1),
-                                                    L.clamp_cell(x[k].z - lo.z, 2)));
-    ++L.start[cell_id[k] + 1];
-  }
-  for (int l = 0; l < nlev; ++l) {
-    Level& L = lev[static_cast<std::size_t>(l)];
-    if (count[static_cast<std::size_t>(l)] == 0) continue;
-    for (std::size_t c = 0; c + 1 < L.start.size(); ++c) L.start[c + 1] += L.start[c];
-    L.sorted.resize(count[static_cast<std::size_t>(l)]);
-  }
-  {
-    std::vector<std::vector<std::uint32_t>> fill(static_cast<std::size_t>(nlev));
-    for (int l = 0; l < nlev; ++l)
-      if (!lev[static_cast<std::size_t>(l)].start.empty())
-        fill[static_cast<std::size_t>(l)].assign(lev[static_cast<std::size_t>(l)].start.begin(),
-                                                 lev[static_cast<std::size_t>(l)].start.end() - 1);
-    for (std::size_t k = 0; k < n; ++k) {
-      const auto l = static_cast<std::size_t>(level_of[k]);
-      lev[l].sorted[fill[l][cell_id[k]]++] = static_cast<std::uint32_t>(k);
-    }
-    for (Level& L : lev) {
-      L.xs.resize(L.sorted.size());
-      L.rs.resize(L.sorted.size());
-      for (std::size_t s = 0; s < L.sorted.size(); ++s) {
-        L.xs[s] = x[L.sorted[s]];
-        L.rs[s] = radius[L.sorted[s]];
-      }
-    }
-  }
-
-  const int nthreads = static_cast<long>(n) >= parallel_min_items ? omp_get_max_threads() : 1;
-  std::vector<CandidatePairs> local(static_cast<std::size_t>(nthreads));
+  out.i.clear();
+  out.j.clear();
+  if (n < 2) return;
+  const long nn = static_cast<long>(n);
+  const int nthreads = nn >= parallel_min_items ? omp_get_max_threads() : 1;
+  level_of_.resize(n);
+  cell_id_.resize(n);
+  slot_.resize(n);
+  const std::size_t nchunks = (n + kFinders - 1) / kFinders;
+  if (chunks_.size() < nchunks) chunks_.resize(nchunks);
+  offset_.assign(nchunks + 1, 0);
+  double lox = x[0].x, loy = x[0].y, loz = x[0].z, hix = lox, hiy = loy, hiz = loz;
+  Vec3 lo;
+  // One parallel region with three barriers (on this 2-core VM a sleeping thread takes tens of us to wake,
+  // and a pour rebuilds every ~8 steps): the bounding box in parallel, the set-up in one thread (size
+  // levels, grids, counting sort: linear, a fraction of the search), the search in parallel, then the
+  // concatenation in one thread.
 #pragma omp parallel num_threads(nthreads)
   {
-    CandidatePairs& mine = local[static_cast<std::size_t>(omp_get_thread_num())];
-    auto test = [&](std::size_t a, const Vec3& xa, const Level& L, std::uint32_t s, double ra) {
-      const std::uint32_t b = L.sorted[s];
-      const double cut = ra + L.rs[s];
-      if (norm2(L.xs[s] - xa) < cut * cut) {
-        mine.i.push_back(static_cast<std::uint32_t>(std::min<std::size_t>(a, b)));
-        mine.j.push_back(static_cast<std::uint32_t>(std::max<std::size_t>(a, b)));
-      }
-    };
-#pragma omp for schedule(static)
-    for (std::size_t a = 0; a < n; ++a) {
-      const int la = level_of[a];
-      const double ra = radius[a] + skin;
-      const Vec3 xa = x[a];
-      const Vec3 rel = xa - lo;
-      // Own level: half stencil (own cell with higher indices, then the 13 "forward" cells); each pair
-      // of the level is found once.
-      {
-        const Level& L = lev[static_cast<std::size_t>(la)];
-        const long c0 = L.clamp_cell(rel.x, 0), c1 = L.clamp_cell(rel.y, 1), c2 = L.clamp_cell(rel.z, 2);
-        for (int o = 0; o < 14; ++o) {
-          const long cx = c0 + kStencil[o][0], cy = c1 + kStencil[o][1], cz = c2 + kStencil[o][2];
-          if (cx < 0 || cx >= L.dim[0] || cy < 0 || cy >= L.dim[1] || cz < 0 || cz >= L.dim[2]) continue;
-          const std::size_t cc = L.index(cx, cy, cz);
-          for (std::uint32_t s = L.start[cc]; s < L.start[cc + 1]; ++s) {
-            if (o == 0 && L.sorted[s] <= a) continue;
-            test(a, xa, L, s, ra);
-          }
+#pragma omp for reduction(min : lox, loy, loz) reduction(max : hix, hiy, hiz)
+    for (long k = 0; k < nn; ++k) {
+      lox = std::min(lox, x[k].x), loy = std::min(loy, x[k].y), loz = std::min(loz, x[k].z);
+      hix = std::max(hix, x[k].x), hiy = std::max(hiy, x[k].y), hiz = std::max(hiz, x[k].z);
+    }
+#pragma omp single
+    {
+      lo = {lox, loy, loz};
+      const Vec3 hi{hix, hiy, hiz};
+      // Size classes of a factor 2 in radius: level = floor(log2(r / r_min)); one level for ratios < 2.
+      // Radii do not change during a run: recomputed only when they differ from the last build's.
+      if (radius_ != radius) {
+        radius_ = radius;
+        double rmin = radius[0];
+        for (double r : radius) rmin = std::min(rmin, r);
+        nlev_ = 1;
+        for (std::size_t k = 0; k < n; ++k) {
+          level_of_[k] = std::min(30, static_cast<int>(std::floor(std::log2(radius[k] / rmin))));
+          nlev_ = std::max(nlev_, level_of_[k] + 1);
         }
       }
-      // Finer levels: every cell within the pair cutoff (a larger sphere finds each smaller partner once).
-      for (int lb = 0; lb < la; ++lb) {
-        const Level& L = lev[static_cast<std::size_t>(lb)];
-        if (L.sorted.empty()) continue;
-        const double reach = ra + L.rmax;
-        const long x0 = L.clamp_cell(rel.x - reach, 0), x1 = L.clamp_cell(rel.x + reach, 0);
-        const long y0 = L.clamp_cell(rel.y - reach, 1), y1 = L.clamp_cell(rel.y + reach, 1);
-        const long z0 = L.clamp_cell(rel.z - reach, 2), z1 = L.clamp_cell(rel.z + reach, 2);
-        for (long cz = z0; cz <= z1; ++cz)
-          for (long cy = y0; cy <= y1; ++cy)
-            for (long cx = x0; cx <= x1; ++cx) {
-              const std::size_t cc = L.index(cx, cy, cz);
-              for (std::uint32_t s = L.start[cc]; s < L.start[cc + 1]; ++s) test(a, xa, L, s, ra);
-            }
+      lev_.resize(static_cast<std::size_t>(nlev_));
+      for (Level& L : lev_) {
+        L.rmax = 0.0;
+        L.count = 0;
+      }
+      for (std::size_t k = 0; k < n; ++k) {
+        Level& L = lev_[static_cast<std::size_t>(level_of_[k])];
+        L.rmax = std::max(L.rmax, radius[k]);
+        ++L.count;
+      }
+      for (Level& L : lev_) {
+        L.sorted.resize(L.count);
+        L.xs.resize(L.count);
+        L.rs.resize(L.count);
+        if (L.count == 0) {
+          L.start.assign(2, 0);
+          continue;
+        }
+        L.cell = 2.0 * L.rmax + skin;
+        // A sparse cloud must not allocate a huge grid: grow the cells until there are at most ~4 per particle.
+        auto cells = [&](double c) {
+          L.dim[0] = static_cast<long>((hi.x - lo.x) / c) + 1;
+          L.dim[1] = static_cast<long>((hi.y - lo.y) / c) + 1;
+          L.dim[2] = static_cast<long>((hi.z - lo.z) / c) + 1;
+          return static_cast<double>(L.dim[0]) * static_cast<double>(L.dim[1]) * static_cast<double>(L.dim[2]);
+        };
+        while (cells(L.cell) > 4.0 * static_cast<double>(L.count) + 64.0) L.cell *= 1.5;
+        L.inv = 1.0 / L.cell;
+        L.start.assign(static_cast<std::size_t>(L.dim[0] * L.dim[1] * L.dim[2]) + 1, 0);
+      }
+      // Counting sort per level, stable (ascending index inside a cell): count into start[c + 1], prefix
+      // sums, fill with start[c] as the cursor, then shift start back by one cell.
+      for (std::size_t k = 0; k < n; ++k) {
+        Level& L = lev_[static_cast<std::size_t>(level_of_[k])];
+        cell_id_[k] = static_cast<std::uint32_t>(L.index(L.clamp_cell(x[k].x - lo.x, 0), L.clamp_cell(x[k].y - lo.y, 1),
+                                                         L.clamp_cell(x[k].z - lo.z, 2)));
+        ++L.start[cell_id_[k] + 1];
+      }
+      for (Level& L : lev_)
+        for (std::size_t c = 0; c + 1 < L.start.size(); ++c) L.start[c + 1] += L.start[c];
+      for (std::size_t k = 0; k < n; ++k) {
+        Level& L = lev_[static_cast<std::size_t>(level_of_[k])];
+        const std::uint32_t s = L.start[cell_id_[k]]++;
+        L.sorted[s] = static_cast<std::uint32_t>(k);
+        L.xs[s] = x[k];
+        L.rs[s] = radius[k];
+        slot_[k] = s;
+      }
+      for (Level& L : lev_) {
+        for (std::size_t c = L.start.size() - 1; c >= 1; --c) L.start[c] = L.start[c - 1];
+        L.start[0] = 0;
+      }
+    }
+
+#pragma omp for schedule(dynamic, 1)
+    for (std::size_t c = 0; c < nchunks; ++c) {
+      Chunk& ch = chunks_[c];
+      std::size_t m = 0;
+      // Candidates s0 .. s1 of level L against particle a: branch-free (every candidate is written, the
+      // count advances on a hit), the pairs in scan order.
+      auto scan = [&](const Level& L, std::uint32_t s0, std::uint32_t s1, std::uint32_t a, const Vec3& xa, double ra) {
+        if (s1 <= s0) return;
+        if (m + (s1 - s0) > ch.i.size()) {
+          ch.i.resize(2 * (m + (s1 - s0)) + 64);
+          ch.j.resize(ch.i.size());
+        }
+        std::uint32_t* pi = ch.i.data();
+        std::uint32_t* pj = ch.j.data();
+        const std::uint32_t* sorted = L.sorted.data();
+        const Vec3* xs = L.xs.data();
+        const double* rs = L.rs.data();
+        for (std::uint32_t s = s0; s < s1; ++s) {
+          const std::uint32_t b = sorted[s];
+          const double cut = ra + rs[s];
+          const bool hit = norm2(xs[s] - xa) < cut * cut;
+          pi[m] = std::min(a, b);
+          pj[m] = std::max(a, b);
+          m += hit;
+        }
+      };
+      const std::size_t a_end = std::min(n, (c + 1) * kFinders);
+      for (std::size_t a = c * kFinders; a < a_end; ++a) {
+        const auto a32 = static_cast<std::uint32_t>(a);
+        const int la = level_of_[a];
+        const double ra = radius[a] + skin;
+        const Vec3 xa = x[a];
+        const Vec3 rel = xa - lo;
+        // Own level: half stencil, each pair of the level found once: the rest of the own cell (higher
+        // indices: the cell is sorted by index) and the next cell in x, then the 3-cell rows (y + 1, z),
+        // (y - 1 .. y + 1, z + 1); a row of cells is one contiguous range of the sorted particles.
+        {
+          const Level& L = lev_[static_cast<std::size_t>(la)];
+          const long c0 = L.clamp_cell(rel.x, 0), c1 = L.clamp_cell(rel.y, 1), c2 = L.clamp_cell(rel.z, 2);
+          const long xl = std::max(c0 - 1, 0L), xh = std::min(c0 + 1, L.dim[0] - 1);
+          auto row = [&](long first_x, long cy, long cz, std::uint32_t from) {
+            if (cy < 0 || cy >= L.dim[1] || cz >= L.dim[2]) return;
+            const std::uint32_t s0 = from != UINT32_MAX ? from : L.start[L.index(first_x, cy, cz)];
+            scan(L, s0, L.start[L.index(xh, cy, cz) + 1], a32, xa, ra);
+          };
+          row(c0, c1, c2, slot_[a] + 1);
+          row(xl, c1 + 1, c2, UINT32_MAX);
+          for (long cy = c1 - 1; cy <= c1 + 1; ++cy) row(xl, cy, c2 + 1, UINT32_MAX);
+        }
+        // Finer levels: every cell within the pair cutoff (a larger sphere finds each smaller partner once).
+        for (int lb = 0; lb < la; ++lb) {
+          const Level& L = lev_[static_cast<std::size_t>(lb)];
+          if (L.count == 0) continue;
+          const double reach = ra + L.rmax;
+          const long x0 = L.clamp_cell(rel.x - reach, 0), x1 = L.clamp_cell(rel.x + reach, 0);
+          const long y0 = L.clamp_cell(rel.y - reach, 1), y1 = L.clamp_cell(rel.y + reach, 1);
+          const long z0 = L.clamp_cell(rel.z - reach, 2), z1 = L.clamp_cell(rel.z + reach, 2);
+          for (long cz = z0; cz <= z1; ++cz)
+            for (long cy = y0; cy <= y1; ++cy)
+              scan(L, L.start[L.index(x0, cy, cz)], L.start[L.index(x1, cy, cz) + 1], a32, xa, ra);
+        }
+      }
+      ch.n = m;
+    }
+#pragma omp single nowait
+    {
+      for (std::size_t c = 0; c < nchunks; ++c) offset_[c + 1] = offset_[c] + chunks_[c].n;
+      out.i.resize(offset_[nchunks]);
+      out.j.resize(offset_[nchunks]);
+      for (std::size_t c = 0; c < nchunks; ++c) {
+        std::copy_n(chunks_[c].i.data(), chunks_[c].n, out.i.data() + offset_[c]);
+        std::copy_n(chunks_[c].j.data(), chunks_[c].n, out.j.data() + offset_[c]);
       }
     }
   }
-  for (const auto& l : local) {
-    out.i.insert(out.i.end(), l.i.begin(), l.i.end());
-    out.j.insert(out.j.end(), l.j.begin(), l.j.end());
-  }
+}
+
+CandidatePairs build_pairs(const std::vector<Vec3>& x, const std::vector<double>& radius, double skin) {
+  NeighborSearch search;
+  CandidatePairs out;
+  search.build(x, radius, skin, out);
   return out;
 }
 

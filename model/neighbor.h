@@ -12,8 +12,8 @@
 //
 // The list holds every pair with centre distance < r_i + r_j + skin, stored as (lower index, higher
 // index), so it stays valid until some particle has moved more than skin/2; the World rebuilds it then.
-// Built in parallel, the list is the same for any thread count (each thread handles a contiguous block of
-// particles; blocks are concatenated in order).
+// Built in parallel, the list is the same for any thread count: the finder particles are taken in chunks
+// (any thread), each chunk writes its own buffer, and the buffers are concatenated in chunk order.
 #pragma once
 
 #include <cstdint>
@@ -25,6 +25,44 @@ namespace pastemix::model {
 
 struct CandidatePairs {
   std::vector<std::uint32_t> i, j;  // dense indices, i < j
+};
+
+// The search with its buffers, kept between builds: a rebuild every few steps (a pour: every ~8) then
+// allocates nothing.
+class NeighborSearch {
+ public:
+  // Replaces `out` by the pairs of x / radius closer than r_i + r_j + skin.
+  void build(const std::vector<Vec3>& x, const std::vector<double>& radius, double skin, CandidatePairs& out);
+
+  // One grid level: the particles whose radius falls in one size class, counting-sorted into cells of
+  // 2 r_max(level) + skin.
+  struct Level {
+    double rmax = 0.0, cell = 0.0, inv = 0.0;
+    long dim[3] = {1, 1, 1};
+    std::size_t count = 0;
+    std::vector<std::uint32_t> start, sorted;
+    // Positions and radii in cell order: the search scans them contiguously (the same pairs in the same
+    // order as through `sorted`, fewer cache misses).
+    std::vector<Vec3> xs;
+    std::vector<double> rs;
+    long clamp_cell(double v, int axis) const;
+    std::size_t index(long cx, long cy, long cz) const {
+      return static_cast<std::size_t>((cz * dim[1] + cy) * dim[0] + cx);
+    }
+  };
+
+ private:
+  struct Chunk {
+    std::vector<std::uint32_t> i, j;  // capacity only grows; `n` entries are valid
+    std::size_t n = 0;
+  };
+  std::vector<Level> lev_;
+  std::vector<double> radius_;  // the radii level_of_ was computed for
+  int nlev_ = 1;
+  std::vector<int> level_of_;
+  std::vector<std::uint32_t> cell_id_, slot_;  // slot_[k]: k's position in its level's `sorted`
+  std::vector<Chunk> chunks_;
+  std::vector<std::size_t> offset_;
 };
 
 CandidatePairs build_pairs(const std::vector<Vec3>& x, const std::vector<double>& radius, double skin);

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "model/run.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -54,8 +55,15 @@ RunSummary run_scene(const Scene& scene, const std::filesystem::path& out_dir, c
   };
   world.check();
   emit(0);
-  for (long s = 1; s <= total_steps; ++s) {
-    world.step();
+  // Steps run in batches up to the next step that checks, writes or reports: World::advance fuses the end
+  // of one step with the start of the next inside a batch (the same trajectory as single steps).
+  auto next_multiple = [](long s, long every) { return (s / every + 1) * every; };
+  for (long s = 0; s < total_steps;) {
+    long next = std::min({total_steps, next_multiple(s, opt.check_every), next_multiple(s, snap_every),
+                          next_multiple(s, sample_every)});
+    if (opt.progress) next = std::min(next, next_multiple(s, 100));
+    world.advance(next - s);
+    s = next;
     if (s % opt.check_every == 0) world.check();
     emit(s);
     if (opt.progress && s % 100 == 0) {

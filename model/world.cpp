@@ -3,9 +3,15 @@
 //
 //   1. integration:  v += dt/2 a(t);  omega likewise;  x += dt v            (velocity Verlet, first half)
 //   2. neighbor:     rebuild the Verlet pair list if some particle moved > skin/2 since the last build
-//   3. contacts:     one force per pair (law dispatched once, std::visit), then a per-particle gather
+//   3. contacts:     pair forces, summed per particle in ascending pair order
 //   4. walls:        per particle, in wall order, at the walls' positions at t + dt
 //   5. integration:  v += dt/2 a(t + dt);  omega likewise
+//
+// advance(n) runs n steps with one parallel region per stretch between rebuilds: each thread owns a slab
+// of particles (PairList::partition) and does 3-5 for its own particles, and in the same sweep 1 of the
+// next step; then the one barrier of the step (the positions of every particle are needed for the next
+// pair forces, and the displacements for the rebuild decision). Pairs across two slabs are computed by
+// both threads from ghost copies (contacts.h).
 //
 // Velocity-dependent forces (dashpots, the tangential spring increment) use the half-step velocities, as
 // LIGGGHTS does; the scheme is second order for the conservative part. Rotation is integrated only when
@@ -18,10 +24,11 @@
 // Fluid hook (model/fluid/field.h, only with [[fluid]]): after the forces at t + dt, fluid->update() finds
 // the particles in a region and their submerged volumes (and raises the surface); the half kicks of those
 // particles are replaced by the fluid kick (buoyancy + drag integrated stably, never reversing v). Timed
-// into the integration stage.
+// into the contact_forces stage (one thread, before the pair pass).
 //
-// Every pass writes outputs indexed by the loop variable only (no atomics, no reductions into shared
-// sums), so the trajectory is bitwise identical for any thread count.
+// No atomics and no reductions into shared sums: a particle's force is summed by its owner over its pairs
+// in ascending pair order, as with one thread, so the trajectory is bitwise identical for any thread
+// count (and for any batching of steps into advance()).
 #include "model/world.h"
 
 #include <chrono>
@@ -63,15 +70,17 @@ World::World(WorldConfig config, std::vector<Material> materials, LawTable laws,
 // changes a force: a pair or wall contact is computed whenever it touches, and every touching one is listed.
 void World::rebuild_neighbors() {
   if (fluid_) fluid_->mark_stale();  // fluid candidates: no particle has moved skin/2 since this rebuild
-  CandidatePairs c = build_pairs(p_.x, p_.radius, cfg_.skin);
+  search_.build(p_.x, p_.radius, cfg_.skin, candidates_);
 #ifdef PASTEMIX_VALIDATE
   // Expensive check: the cell list must find exactly the brute-force pairs.
-  if (brute_force_pairs(p_.x, p_.radius, cfg_.skin).i.size() != c.i.size())
+  if (brute_force_pairs(p_.x, p_.radius, cfg_.skin).i.size() != candidates_.i.size())
     throw RuntimeFailure(fmt::format("neighbour list at t = {} s disagrees with brute force", t_));
 #endif
-  pairs_.rebuild(c, p_, static_cast<int>(materials_.size()));
+  pairs_.rebuild(candidates_, p_, static_cast<int>(materials_.size()));
   wall_contacts_.rebuild(walls_, p_, t_, cfg_.skin);
   x_at_rebuild_ = p_.x;
+  // The threads' particles and pairs (slabs of the new positions), for the thread count of this build.
+  pairs_.partition(static_cast<long>(p_.size()) >= parallel_min_items ? omp_get_max_threads() : 1, p_.x);
   t_at_rebuild_ = t_;
   ++profile_.rebuilds;
 }
@@ -93,57 +102,179 @@ inline void World::kick_one(long a, double h, bool rot, bool roll) {
   }
 }
 
-void World::forces(double h, bool kick) {
-  StepContext ctx{t_, cfg_.dt, static_cast<int>(materials_.size()), cfg_.rolling};
-  const long n = static_cast<long>(p_.size());
-  const bool parallel = n >= parallel_min_items && omp_get_max_threads() > 1;
-  // One thread: the pair pass sums straight into the particles; several: one output per pair, gathered
-  // below in the same order (same bits).
-  const bool direct = !parallel || static_cast<long>(pairs_.size()) < parallel_min_items;
-  {
-    StageTimer timer{profile_.seconds[Profile::contact_forces]};
-    compute_pair_forces(laws_, ctx, p_, pairs_, direct);
+// The closing half kick of a step and the opening half kick of the next (the same force): kick_one twice,
+// with the shared factors computed once and v, omega kept in registers in between (the same bits).
+inline void World::kick_twice(long a, double h, bool rot, bool roll) {
+  if (fluid_ && fluid_->inside(a)) {
+    kick_one(a, h, rot, roll);
+    kick_one(a, h, rot, roll);
+    return;
   }
-  StageTimer timer{profile_.seconds[Profile::walls_kick]};
-  if (fluid_) fluid_->update(p_);  // fluid hook: positions only (the drift is done)
-  wall_state_.update(walls_, ctx.t);
+  const Vec3 dv = (p_.f[a] * p_.inv_mass[a] + cfg_.gravity) * h;
+  Vec3 v = p_.v[a];
+  v += dv;
+  v += dv;
+  p_.v[a] = v;
+  if (rot) {
+    const Vec3 dw = p_.torque[a] * (h * p_.inv_inertia[a]);
+    Vec3 w = p_.omega[a];
+    if (roll && p_.rolling_capacity[a] > 0.0) {
+      const double stop = h * p_.rolling_capacity[a] * p_.inv_inertia[a];  // rad/s the friction can remove
+      for (int k = 0; k < 2; ++k) {
+        w = w + dw;
+        const double len = norm(w);
+        w = len <= stop ? Vec3{} : w * (1.0 - stop / len);
+      }
+    } else {
+      w = w + dw;
+      w = w + dw;
+    }
+    p_.omega[a] = w;
+  }
+}
+
+inline void World::drift_one(long a, double& d2, long& first_bad) {
+  p_.x[a] += p_.v[a] * cfg_.dt;
+  const Vec3& x = p_.x[a];
+  const Vec3 lo = cfg_.domain_min, hi = cfg_.domain_max;
+  // NaN fails every comparison, so "not inside" also catches it.
+  if (!(x.x >= lo.x && x.x <= hi.x && x.y >= lo.y && x.y <= hi.y && x.z >= lo.z && x.z <= hi.z))
+    first_bad = std::min(first_bad, a);
+  d2 = std::max(d2, norm2(x - x_at_rebuild_[a]));
+}
+
+bool World::rebuild_due(double moved2, double t) const {
+  // The lists stay valid while no particle has moved more than skin/2 since their build, and, for the wall
+  // candidates, particle plus wall motion stays below skin/2; a wall's motion is |v| (t - t_build); a
+  // removed wall needs no rebuild (it is skipped when inactive).
+  double wall_move = 0.0;
+  for (const Wall& wall : walls_)
+    wall_move = std::max(wall_move, norm(wall.displacement(t) - wall.displacement(t_at_rebuild_)));
+  const double half = 0.5 * cfg_.skin;
+  return moved2 > half * half || (wall_move > 0.0 && std::sqrt(moved2) + wall_move > half);
+}
+
+long World::passes(long n, double h, bool initial, double& moved2) {
+  const long np = static_cast<long>(p_.size());
+  const int threads = np >= parallel_min_items ? omp_get_max_threads() : 1;
+  if (pairs_.threads != threads) pairs_.partition(threads, p_.x);
+  if (threads > 1) pairs_.fill_ghosts(p_);
+  wall_state_.resize(static_cast<std::size_t>(threads));
+  for (auto& r : results_) r.resize(static_cast<std::size_t>(threads));
   const bool rot = p_.has_rotation;
   const bool roll = cfg_.rolling == RollingLaw::constant_torque;
   const bool has_walls = !walls_.empty();
-  // Per particle, in this order: pair forces (gathered, or already summed), wall forces in wall order,
-  // then the half kick: the same operations in the same order as separate passes, one sweep of memory.
+  const int n_materials = static_cast<int>(materials_.size());
+  long done = 0, drifts = 0;
+  double t_end = t_, d2_end = moved2;
+  long bad_end = std::numeric_limits<long>::max();
+  int parity_end = pairs_.parity;
+  double pair_s = 0.0, particle_s = 0.0, wait_s = 0.0;
   std::visit(
       [&](const auto& table) {
         using Law = typename std::decay_t<decltype(table)>::value_type::Law;
-        auto one = [&](long a) {
-          Vec3 f, t;
-          double rc = 0.0;
-          if (direct) {
-            f = p_.f[a];
-            if (rot) {
-              t = p_.torque[a];
-              rc = p_.rolling_capacity[a];
+#pragma omp parallel num_threads(threads)
+        {
+          const int me = omp_get_thread_num();
+          const bool master = me == 0;
+          // Thread 0 alone: every particle; several: the thread's own, ascending.
+          const std::uint32_t* own = threads > 1 ? pairs_.own[static_cast<std::size_t>(me)].data() : nullptr;
+          const long n_own = threads > 1 ? static_cast<long>(pairs_.own[static_cast<std::size_t>(me)].size()) : np;
+          WallState& ws = wall_state_[static_cast<std::size_t>(me)];
+          double t = t_;  // every thread advances its own copy: the same additions, the same bits
+          int cur = pairs_.parity;
+          long my_done = 0, my_drifts = 0;
+          double d2_all = moved2;
+          long bad_all = std::numeric_limits<long>::max();
+          for (;;) {
+            const auto c0 = Clock::now();
+            // The fluid update reads the positions of every particle (all drifted: the barrier) and must
+            // precede every kick; one thread, then the barrier of `single`.
+            if (fluid_) {
+#pragma omp single
+              fluid_->update(p_);
             }
-          } else {
-            gather_one(pairs_, static_cast<std::size_t>(a), rot, f, t, rc);
+            ws.update(walls_, t);
+            const StepContext ctx{t, cfg_.dt, n_materials, cfg_.rolling};
+            const Then then = initial ? Then::nothing : (my_done + 1 < n ? Then::kick_drift : Then::kick);
+            pair_forces(laws_, ctx, p_, pairs_, me, cur);
+            const auto c1 = Clock::now();
+            double d2 = 0.0;
+            long bad = std::numeric_limits<long>::max();
+            // Per owned particle, in this order: pair forces (summed above), wall forces in wall order,
+            // then the half kick (and the next opening half kick and drift): the same operations in the
+            // same order as separate passes, one sweep of memory.
+            for (long q = 0; q < n_own; ++q) {
+              const long a = own ? own[q] : q;
+              if (has_walls && wall_contacts_.start[a] != wall_contacts_.start[a + 1]) {
+                Vec3 f = p_.f[a], tq;
+                double rc = 0.0;
+                if (rot) {
+                  tq = p_.torque[a];
+                  rc = p_.rolling_capacity[a];
+                }
+                wall_forces_one<Law>(table, ctx, walls_, ws, p_, wall_contacts_, static_cast<std::size_t>(a), f, tq, rc);
+                p_.f[a] = f;
+                if (rot) {
+                  p_.torque[a] = tq;
+                  p_.rolling_capacity[a] = rc;
+                }
+              }
+              if (then == Then::nothing) continue;
+              if (then == Then::kick) {
+                kick_one(a, h, rot, roll);
+              } else {
+                kick_twice(a, h, rot, roll);
+                drift_one(a, d2, bad);
+                // The state the other threads read in the next pass (cross pairs).
+                if (threads > 1 && pairs_.ghost_of[a] != PairList::kNone)
+                  pairs_.ghost[cur ^ 1][pairs_.ghost_of[a]] = {p_.x[a], p_.v[a], rot ? p_.omega[a] : Vec3{}};
+              }
+            }
+            const auto c2 = Clock::now();
+            ++my_done;
+            cur ^= 1;  // the cross pairs' history just written
+            if (master) {
+              pair_s += std::chrono::duration<double>(c1 - c0).count();
+              particle_s += std::chrono::duration<double>(c2 - c1).count();
+            }
+            if (then != Then::kick_drift) break;  // the end of the region is the barrier
+            // The next step has begun: its positions are needed by every thread, and its displacement and
+            // domain results by the rebuild decision, which every thread takes alike.
+            ++my_drifts;
+            auto& slot = results_[my_done & 1];
+            slot[static_cast<std::size_t>(me)] = {d2, bad};
+#pragma omp barrier
+            if (master) wait_s += std::chrono::duration<double>(Clock::now() - c2).count();
+            d2_all = 0.0;
+            for (const auto& r : slot) {
+              d2_all = std::max(d2_all, r.d2);
+              bad_all = std::min(bad_all, r.bad);
+            }
+            t += cfg_.dt;
+            if (bad_all != std::numeric_limits<long>::max() || rebuild_due(d2_all, t)) break;
           }
-          if (has_walls)
-            wall_forces_one<Law>(table, ctx, walls_, wall_state_, p_, wall_contacts_, static_cast<std::size_t>(a), f, t, rc);
-          p_.f[a] = f;
-          if (rot) {
-            p_.torque[a] = t;
-            p_.rolling_capacity[a] = rc;
+          if (master) {
+            done = my_done;
+            drifts = my_drifts;
+            t_end = t;
+            d2_end = d2_all;
+            bad_end = bad_all;
+            parity_end = cur;
           }
-          if (kick) kick_one(a, h, rot, roll);
-        };
-        if (parallel) {
-#pragma omp parallel for schedule(dynamic, 256)
-          for (long a = 0; a < n; ++a) one(a);
-        } else {
-          for (long a = 0; a < n; ++a) one(a);
         }
       },
       laws_);
+  pairs_.parity = parity_end;
+  pairs_.sync_cross();
+  t_ = t_end;
+  steps_ += drifts;
+  moved2 = d2_end;
+  if (bad_end != std::numeric_limits<long>::max() && bad_index_ < 0) bad_index_ = bad_end;
+  profile_.seconds[Profile::contact_forces] += pair_s;
+  profile_.seconds[Profile::walls_kick] += particle_s;
+  profile_.seconds[Profile::wait] += wait_s;
+  return done;
 }
 
 // First half kick and drift in one loop, with the domain check and the displacement since the last
@@ -152,60 +283,47 @@ double World::kick_drift(double h) {
   const long n = static_cast<long>(p_.size());
   const bool rot = p_.has_rotation;
   const bool roll = cfg_.rolling == RollingLaw::constant_torque;
-  const double dt = cfg_.dt;
   double max_d2 = 0.0;
   long bad = std::numeric_limits<long>::max();
-  const Vec3 lo = cfg_.domain_min, hi = cfg_.domain_max;
   const bool parallel = n >= parallel_min_items && omp_get_max_threads() > 1;
-  auto one = [&](long a, double& d2, long& first_bad) {
+#pragma omp parallel for schedule(static, 256) reduction(max : max_d2) reduction(min : bad) if (parallel)
+  for (long a = 0; a < n; ++a) {
     kick_one(a, h, rot, roll);
-    p_.x[a] += p_.v[a] * dt;
-    const Vec3& x = p_.x[a];
-    // NaN fails every comparison, so "not inside" also catches it.
-    if (!(x.x >= lo.x && x.x <= hi.x && x.y >= lo.y && x.y <= hi.y && x.z >= lo.z && x.z <= hi.z))
-      first_bad = std::min(first_bad, a);
-    d2 = std::max(d2, norm2(x - x_at_rebuild_[a]));
-  };
-  if (parallel) {
-#pragma omp parallel for schedule(dynamic, 512) reduction(max : max_d2) reduction(min : bad)
-    for (long a = 0; a < n; ++a) one(a, max_d2, bad);
-  } else {
-    for (long a = 0; a < n; ++a) one(a, max_d2, bad);
+    drift_one(a, max_d2, bad);
   }
   if (bad != std::numeric_limits<long>::max() && bad_index_ < 0) bad_index_ = bad;
   return max_d2;
 }
 
-void World::step() {
+// A step: kick and drift (fused into the previous step's last pass, except at the start of a batch),
+// t += dt, the domain check, a rebuild if due, then the forces at t and the closing half kick.
+void World::advance(long n) {
+  if (n <= 0) return;
   const double h = 0.5 * cfg_.dt;
+  double moved2 = 0.0;
   if (!started_) {
     {
       StageTimer timer{profile_.seconds[Profile::neighbor]};
       rebuild_neighbors();
     }
-    forces(h, false);
+    passes(1, h, true, moved2);
     started_ = true;
   }
-  double moved2;
   {
     StageTimer timer{profile_.seconds[Profile::kick_drift]};
     moved2 = kick_drift(h);
   }
   t_ += cfg_.dt;
   ++steps_;
-  if (bad_index_ >= 0) check();
-  // The lists stay valid while no particle has moved more than skin/2 since their build, and, for the wall
-  // candidates, particle plus wall motion stays below skin/2; a wall's motion is |v| (t - t_build); a
-  // removed wall needs no rebuild (it is skipped when inactive).
-  double wall_move = 0.0;
-  for (const Wall& wall : walls_)
-    wall_move = std::max(wall_move, norm(wall.displacement(t_) - wall.displacement(t_at_rebuild_)));
-  const double half = 0.5 * cfg_.skin;
-  if (moved2 > half * half || (wall_move > 0.0 && std::sqrt(moved2) + wall_move > half)) {
-    StageTimer timer{profile_.seconds[Profile::neighbor]};
-    rebuild_neighbors();
+  for (long left = n; left > 0;) {
+    if (bad_index_ >= 0) check();
+    if (rebuild_due(moved2, t_)) {
+      StageTimer timer{profile_.seconds[Profile::neighbor]};
+      rebuild_neighbors();
+    }
+    left -= passes(left, h, false, moved2);
   }
-  forces(h, true);
+  if (bad_index_ >= 0) check();
 }
 
 void World::check() const {

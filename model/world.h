@@ -16,13 +16,15 @@
 
 namespace pastemix::model {
 
-// Wall-clock seconds spent per stage (the order is the order of the step): kick_drift = first half kick
-// and drift; neighbor = list rebuilds; contact_forces = the pair pass; walls_kick = the fused per-particle
-// pass (gather of the pair forces, wall forces, closing half kick, and the fluid update before it).
+// Wall-clock seconds spent per stage, as seen by thread 0 (the order is the order of the step):
+// kick_drift = the first half kick and drift of a batch of steps (World::advance; the later ones are fused
+// into walls_kick); neighbor = list rebuilds; contact_forces = the pair pass (and the fluid update before
+// it); walls_kick = the per-particle pass (wall forces, closing half kick, next opening half kick and
+// drift); wait = thread 0 waiting at the step's barrier for the other threads.
 struct Profile {
-  enum Stage { kick_drift, neighbor, contact_forces, walls_kick, output, count };
+  enum Stage { kick_drift, neighbor, contact_forces, walls_kick, wait, output, count };
   static constexpr std::array<const char*, count> names{"kick_drift", "neighbor", "contact_forces",
-                                                        "walls_kick", "output"};
+                                                        "walls_kick", "wait", "output"};
   std::array<double, count> seconds{};
   long rebuilds = 0;
 };
@@ -52,7 +54,11 @@ class World {
         std::vector<Wall> walls, int history_width);
 
   // Advances one step of velocity Verlet (the first call also evaluates the initial forces).
-  void step();
+  void step() { advance(1); }
+  // Advances n steps: the same trajectory, bit for bit, as n calls of step(), with fewer passes over
+  // memory and fewer thread synchronisations: the closing half kick of a step and the opening half kick and
+  // drift of the next one are one per-particle pass (they touch only that particle).
+  void advance(long n);
   // Throws RuntimeFailure (particle id, time, cause) if a particle is non-finite, outside the domain,
   // or the kinetic energy exceeds the blow-up limit. Cheap: call every few steps.
   void check() const;
@@ -79,10 +85,20 @@ class World {
 
  private:
   void rebuild_neighbors();
-  // Pair forces (stage contact_forces), then one fused pass over the particles (stage wall_forces):
-  // gather of the pair forces (several threads), wall forces, and with kick = true the closing half kick.
-  void forces(double h, bool kick);
+  // What the per-particle pass after the forces does besides summing them.
+  enum class Then { nothing, kick, kick_drift };
+  // Force passes in one parallel region, at most `n` of them: per thread, its pair forces, then per owned
+  // particle its wall forces, the closing half kick and (Then::kick_drift, all but the n-th pass) the next
+  // step's opening half kick and drift; then the one barrier of the step. Stops after a pass that leaves
+  // a rebuild due or a particle bad (moved2 = the largest squared displacement since the last rebuild).
+  // initial: one pass without kick (the forces at t = 0). Returns the number of passes.
+  long passes(long n, double h, bool initial, double& moved2);
+  // Whether the lists must be rebuilt at time t, the particles having moved sqrt(moved2) since the last.
+  bool rebuild_due(double moved2, double t) const;
   void kick_one(long a, double h, bool rot, bool roll);
+  void kick_twice(long a, double h, bool rot, bool roll);
+  // Drift of particle a by dt, its domain check and its squared displacement since the last rebuild.
+  void drift_one(long a, double& d2, long& first_bad);
   // First half kick and drift; returns the largest squared displacement since the last rebuild (m2).
   double kick_drift(double h);
 
@@ -93,7 +109,16 @@ class World {
   std::vector<Wall> walls_;
   PairList pairs_;
   WallContacts wall_contacts_;
-  WallState wall_state_;
+  std::vector<WallState> wall_state_;  // per thread
+  NeighborSearch search_;
+  CandidatePairs candidates_;          // the neighbour search's output, kept for its capacity
+  // Per thread and step parity: largest squared displacement and first bad particle of its block; padded
+  // to a cache line, read by every thread after the step's barrier.
+  struct alignas(64) ThreadResult {
+    double d2 = 0.0;
+    long bad = 0;
+  };
+  std::vector<ThreadResult> results_[2];
   std::vector<Vec3> x_at_rebuild_;
   Profile profile_;
   double t_ = 0.0;

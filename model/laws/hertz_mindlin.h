@@ -80,6 +80,98 @@ struct HertzMindlin {
     double normal_force;   // N, F_n >= 0 used for Coulomb and rolling limits
   };
 
+  // Structure of arrays for force_batch(): kBatch sphere-sphere contacts, one per lane. Inputs as in
+  // Geometry (separation d = x_j - x_i, |d|^2, r_i + r_j, radii, velocities, angular velocities), the
+  // parameters of each contact, and the tangential spring (hx, hy, hz: in and out). Outputs: force on i,
+  // n x F_t (the caller scales it by each sphere's arm), F_n >= 0 and the two arms.
+  static constexpr int kBatch = 64;
+  struct Batch {
+    double dx[kBatch], dy[kBatch], dz[kBatch], dist2[kBatch], rsum[kBatch], ra[kBatch], rb[kBatch];
+    double r_star[kBatch], m_star[kBatch];
+    double E_star[kBatch], G_star[kBatch], damping[kBatch], sqrt_st_over_sn[kBatch], friction[kBatch];
+    double vax[kBatch], vay[kBatch], vaz[kBatch], vbx[kBatch], vby[kBatch], vbz[kBatch];
+    double wax[kBatch], way[kBatch], waz[kBatch], wbx[kBatch], wby[kBatch], wbz[kBatch];
+    double hx[kBatch], hy[kBatch], hz[kBatch];
+    double fx[kBatch], fy[kBatch], fz[kBatch], tx[kBatch], ty[kBatch], tz[kBatch];
+    double fn[kBatch], arm_a[kBatch], arm_b[kBatch];
+  };
+  // Contacts 0 .. m-1 of b: the operations of the pair pass plus force() with a tangential spring (width
+  // 3), rotation on and no rolling spring, in the same order, lane by lane; the branches become selects
+  // (both sides computed, lanes whose side is not taken discarded), so the compiler runs 4 contacts per
+  // AVX2 instruction and every lane gets the bits force() gives that contact.
+  static void force_batch(Batch& b, int m, double dt) {
+    for (int q = 0; q < m; ++q) {
+      const double dist = std::sqrt(b.dist2[q]);
+      const double inv = 1.0 / dist;
+      const double nx = b.dx[q] * inv, ny = b.dy[q] * inv, nz = b.dz[q] * inv;
+      const double overlap = b.rsum[q] - dist;
+      const double arm_a = b.ra[q] - 0.5 * overlap, arm_b = b.rb[q] - 0.5 * overlap;
+      // v_rel = v_b - v_a - (arm_a w_a + arm_b w_b) x n
+      const double sx = b.wax[q] * arm_a + b.wbx[q] * arm_b;
+      const double sy = b.way[q] * arm_a + b.wby[q] * arm_b;
+      const double sz = b.waz[q] * arm_a + b.wbz[q] * arm_b;
+      const double vx = (b.vbx[q] - b.vax[q]) - (sy * nz - sz * ny);
+      const double vy = (b.vby[q] - b.vay[q]) - (sz * nx - sx * nz);
+      const double vz = (b.vbz[q] - b.vaz[q]) - (sx * ny - sy * nx);
+      const double sqrt_Rd = std::sqrt(b.r_star[q] * overlap);
+      const double Sn = 2.0 * b.E_star[q] * sqrt_Rd;
+      const double fn_elastic = (2.0 / 3.0) * Sn * overlap;
+      const double vn = vx * nx + vy * ny + vz * nz;
+      const double sqrt_sn_m = std::sqrt(Sn * b.m_star[q]);
+      const double fn = fn_elastic - b.damping[q] * sqrt_sn_m * vn;
+      const double fn_pos = fn < 0.0 ? 0.0 : fn;  // std::max(fn, 0.0)
+      // The stored spring, turned into the tangent plane and rescaled to its old length.
+      double xx = b.hx[q], xy = b.hy[q], xz = b.hz[q];
+      const double xi_old2 = xx * xx + xy * xy + xz * xz;
+      const double dxn = xx * nx + xy * ny + xz * nz;
+      const double px = xx - nx * dxn, py = xy - ny * dxn, pz = xz - nz * dxn;
+      const double xi_new2 = px * px + py * py + pz * pz;
+      // Every value is computed before the selects: an operation only inside a select would be one that
+      // may trap, and the compiler keeps such branches (no vectorization).
+      const double scale = std::sqrt(xi_old2 / xi_new2);
+      const double qx = px * scale, qy = py * scale, qz = pz * scale;
+      const bool turn = xi_old2 > 0.0, rescale = xi_new2 > 0.0;
+      xx = turn ? (rescale ? qx : px) : xx;
+      xy = turn ? (rescale ? qy : py) : xy;
+      xz = turn ? (rescale ? qz : pz) : xz;
+      const double tvx = vx - nx * vn, tvy = vy - ny * vn, tvz = vz - nz * vn;
+      xx += tvx * dt;
+      xy += tvy * dt;
+      xz += tvz * dt;
+      const double St = 8.0 * b.G_star[q] * sqrt_Rd;
+      const double c = b.damping[q] * sqrt_sn_m * b.sqrt_st_over_sn[q];
+      double ftx = xx * St + tvx * c, fty = xy * St + tvy * c, ftz = xz * St + tvz * c;
+      const double ft_len2 = ftx * ftx + fty * fty + ftz * ftz;
+      const double ft_max = b.friction[q] * fn_pos;
+      // Slip: the friction force on the Coulomb limit, the spring carrying all of it.
+      const bool slip = ft_len2 > ft_max * ft_max;
+      const double ft_len = std::sqrt(ft_len2);
+      const bool some = ft_len > 0.0, stiff = St > 0.0;
+      const double r = ft_max / ft_len, inv_st = 1.0 / St;
+      const double rx = ftx * r, ry = fty * r, rz = ftz * r;
+      const double sx2 = some ? rx : 0.0, sy2 = some ? ry : 0.0, sz2 = some ? rz : 0.0;
+      const double ux = sx2 * inv_st, uy = sy2 * inv_st, uz = sz2 * inv_st;
+      xx = slip ? (stiff ? ux : 0.0) : xx;
+      xy = slip ? (stiff ? uy : 0.0) : xy;
+      xz = slip ? (stiff ? uz : 0.0) : xz;
+      ftx = slip ? sx2 : ftx;
+      fty = slip ? sy2 : fty;
+      ftz = slip ? sz2 : ftz;
+      b.hx[q] = xx;
+      b.hy[q] = xy;
+      b.hz[q] = xz;
+      b.fx[q] = nx * (-fn) + ftx;
+      b.fy[q] = ny * (-fn) + fty;
+      b.fz[q] = nz * (-fn) + ftz;
+      b.tx[q] = ny * ftz - nz * fty;  // n x F_t
+      b.ty[q] = nz * ftx - nx * ftz;
+      b.tz[q] = nx * fty - ny * ftx;
+      b.fn[q] = fn_pos;
+      b.arm_a[q] = arm_a;
+      b.arm_b[q] = arm_b;
+    }
+  }
+
   // history: `width` doubles owned by this contact (tangential spring, then rolling spring).
   static Result force(const Params& p, const Geometry& g, double* history, int width) {
     Result r{};

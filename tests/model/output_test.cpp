@@ -41,7 +41,7 @@ TEST_CASE("output: pastemix run writes HDF5 + XDMF that agree, with scene, seed 
   CHECK(h5.attribute_int("/", "seed") == 1);
   CHECK(h5.attribute_string("/", "scene_hash") == model::scene_hash(text));
   CHECK(h5.read_doubles("/snapshots/time").size() == 3);
-  CHECK(h5.read_strings("/profile/stage").size() == 5);
+  CHECK(h5.read_strings("/profile/stage").size() == model::Profile::count);
   CHECK(h5.attribute_int("/profile", "steps") == 4000);
   const auto ke = h5.read_doubles("/timeseries/kinetic");
   CHECK(ke.size() == h5.read_doubles("/timeseries/time").size());

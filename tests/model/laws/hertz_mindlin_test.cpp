@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "base/csv.h"
+#include "base/rng.h"
 #include "tests/model/scene_text.h"
 #include "tests/run_command.h"
 
@@ -60,6 +61,82 @@ TEST_CASE("Hertz-Mindlin kernel: zero force without overlap history, formula at 
   const auto q = HertzMindlin::from_pair(pd, RollingLaw::none, 0.0);
   g.v_rel = {-1, 0, 0};
   CHECK(HertzMindlin::force(q, g, nullptr, 0).force_i.x < r.force_i.x);
+}
+
+TEST_CASE("Hertz-Mindlin batch kernel: the same bits as force(), lane by lane (stick, slip, new contacts)") {
+  Material a{"a", 2760, 4.68e7, 0.19}, b{"b", 7800, 2e11, 0.3};
+  MaterialPair pab{&a, &b, 0.79, 0.466, 0.15}, paa{&a, &a, 0.5, 0.2, 0.0};
+  const HertzMindlin::Params prm[2] = {HertzMindlin::from_pair(pab, RollingLaw::constant_torque, 0.0),
+                                       HertzMindlin::from_pair(paa, RollingLaw::none, 0.0)};
+  Rng rng(7);
+  HertzMindlin::Batch B;
+  const int m = 61;  // not a multiple of the vector width
+  const double dt = 1e-5;
+  struct Case {
+    Vec3 d, va, vb, wa, wb, h;
+    double ra, rb;
+    int law;
+  };
+  std::vector<Case> cases;
+  for (int q = 0; q < m; ++q) {
+    Case c;
+    c.ra = rng.uniform(1.25e-3, 2.5e-3), c.rb = rng.uniform(1.25e-3, 2.5e-3);
+    const double dist = (c.ra + c.rb) * rng.uniform(0.97, 0.99999);
+    Vec3 dir{rng.normal(), rng.normal(), rng.normal()};
+    c.d = dir * (dist / norm(dir));
+    c.va = {rng.normal(), rng.normal(), rng.normal()}, c.vb = {rng.normal(), rng.normal(), rng.normal()};
+    c.wa = {rng.normal() * 100, rng.normal() * 100, 0}, c.wb = {0, rng.normal() * 100, rng.normal() * 100};
+    // No spring (a new contact), a small one (sticks), a large one (slips).
+    const double hs = q % 3 == 0 ? 0.0 : (q % 3 == 1 ? 1e-7 : 1e-3);
+    c.h = {hs * rng.normal(), hs * rng.normal(), hs * rng.normal()};
+    c.law = q % 2;
+    cases.push_back(c);
+    const HertzMindlin::Params& p = prm[c.law];
+    B.dx[q] = c.d.x, B.dy[q] = c.d.y, B.dz[q] = c.d.z, B.dist2[q] = norm2(c.d), B.rsum[q] = c.ra + c.rb;
+    B.ra[q] = c.ra, B.rb[q] = c.rb, B.r_star[q] = c.ra * c.rb / (c.ra + c.rb), B.m_star[q] = 1e-4;
+    B.E_star[q] = p.E_star, B.G_star[q] = p.G_star, B.damping[q] = p.damping;
+    B.sqrt_st_over_sn[q] = p.sqrt_st_over_sn, B.friction[q] = p.friction;
+    B.vax[q] = c.va.x, B.vay[q] = c.va.y, B.vaz[q] = c.va.z, B.vbx[q] = c.vb.x, B.vby[q] = c.vb.y, B.vbz[q] = c.vb.z;
+    B.wax[q] = c.wa.x, B.way[q] = c.wa.y, B.waz[q] = c.wa.z, B.wbx[q] = c.wb.x, B.wby[q] = c.wb.y, B.wbz[q] = c.wb.z;
+    B.hx[q] = c.h.x, B.hy[q] = c.h.y, B.hz[q] = c.h.z;
+  }
+  HertzMindlin::force_batch(B, m, dt);
+  int slips = 0;
+  for (int q = 0; q < m; ++q) {
+    const Case& c = cases[static_cast<std::size_t>(q)];
+    // The pair pass's scalar path (model/contacts.cpp), operation for operation.
+    const double dist = std::sqrt(norm2(c.d));
+    HertzMindlin::Geometry g;
+    g.n = c.d * (1.0 / dist);
+    g.overlap = c.ra + c.rb - dist;
+    const double arm_a = c.ra - 0.5 * g.overlap, arm_b = c.rb - 0.5 * g.overlap;
+    g.R_star = B.r_star[q];
+    g.m_star = 1e-4;
+    g.v_rel = c.vb - c.va;
+    g.v_rel -= cross(c.wa * arm_a + c.wb * arm_b, g.n);
+    g.arm_i = arm_a;
+    g.dt = dt;
+    double h[HertzMindlin::history_size] = {c.h.x, c.h.y, c.h.z};
+    const auto r = HertzMindlin::force(prm[c.law], g, h, 3);
+    const Vec3 nxt = cross(g.n, r.tangential_i);
+    slips += norm(r.tangential_i) >= prm[c.law].friction * r.normal_force * (1 - 1e-12);
+    CAPTURE(q);
+    CHECK(B.fx[q] == r.force_i.x);
+    CHECK(B.fy[q] == r.force_i.y);
+    CHECK(B.fz[q] == r.force_i.z);
+    CHECK(B.tx[q] == nxt.x);
+    CHECK(B.ty[q] == nxt.y);
+    CHECK(B.tz[q] == nxt.z);
+    CHECK(B.fn[q] == r.normal_force);
+    CHECK(B.arm_a[q] == arm_a);
+    CHECK(B.arm_b[q] == arm_b);
+    CHECK(B.hx[q] == h[0]);
+    CHECK(B.hy[q] == h[1]);
+    CHECK(B.hz[q] == h[2]);
+  }
+  MESSAGE(slips << " of " << m << " contacts slip");
+  CHECK(slips > 5);
+  CHECK(slips < m - 5);
 }
 
 TEST_CASE("two-sphere head-on impact, e = 1: F_n(delta), max overlap, contact time, energy vs Hertz") {
