@@ -249,12 +249,7 @@ void run_repose(const ReposeOpts& opts) {
   std::string method;
   for (const auto& file : opts.results) {
     const H5Reader h5(file);
-    if (!h5.exists("/snapshots")) throw InputError(file, 0, "group '/snapshots'", "missing from the file");
-    std::string last;
-    for (const auto& name : h5.children("/snapshots"))
-      if (name.size() == 6 && name.find_first_not_of("0123456789") == std::string::npos) last = std::max(last, name);
-    if (last.empty()) throw InputError(file, 0, "group '/snapshots'", "holds no snapshot");
-    const std::string g = "/snapshots/" + last;
+    const std::string g = fmt::format("/snapshots/{:06d}", analysis::snapshot_index(h5, file));
     const auto pos = h5.read_doubles(g + "/position");
     const auto radius = h5.read_doubles(g + "/radius");
     if (pos.size() != 3 * radius.size())

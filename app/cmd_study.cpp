@@ -14,6 +14,18 @@
 #include "app/study/sweep.h"
 
 namespace pastemix::app {
+namespace {
+
+// The scene with the override file (if any) and then each --set applied, as `pastemix run` orders them.
+model::SceneDoc scene_doc(const std::string& scene, const std::string& overrides, const std::vector<std::string>& sets) {
+  model::SceneDoc d = model::SceneDoc::parse_file(scene);
+  if (!overrides.empty())
+    for (const auto& a : model::read_override_file(overrides)) d.apply(a);
+  for (const auto& a : sets) d.apply(a);
+  return d;
+}
+
+}  // namespace
 
 void register_study_commands(CLI::App& app) {
   struct Opts {
@@ -43,10 +55,7 @@ void register_study_commands(CLI::App& app) {
   s->add_option("--save", opts->o.save, "folder for each run's final state (<vary>_<value>_seed<S>.h5 + .xmf)");
   s->add_option("--jobs", opts->o.jobs, "runs at once, one thread each (default 1: one run with the OpenMP threads)");
   s->callback([opts] {
-    model::SceneDoc base = model::SceneDoc::parse_file(opts->scene);
-    if (!opts->overrides.empty())
-      for (const auto& a : model::read_override_file(opts->overrides)) base.apply(a);
-    for (const auto& a : opts->sets) base.apply(a);
+    const model::SceneDoc base = scene_doc(opts->scene, opts->overrides, opts->sets);
     const study::SweepResult r = study::sweep(base, opts->o);
     fmt::print("{}", r.table);
     study::write_outputs(r, opts->o);
@@ -76,10 +85,7 @@ void register_study_commands(CLI::App& app) {
   rr->add_option("--overrides", c->overrides, "file of key.path = value lines, applied before --set");
   rr->add_option("--set", c->sets, "scene override key.path=value");
   rr->callback([c] {
-    model::SceneDoc base = model::SceneDoc::parse_file(c->scene);
-    if (!c->overrides.empty())
-      for (const auto& a : model::read_override_file(c->overrides)) base.apply(a);
-    for (const auto& a : c->sets) base.apply(a);
+    const model::SceneDoc base = scene_doc(c->scene, c->overrides, c->sets);
     const long seed0 = base.has("seed") ? std::stol(base.get("seed")) : 1;
     auto f = [&](double mu) {
       std::vector<double> angles;

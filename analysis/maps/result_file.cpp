@@ -41,6 +41,20 @@ Sourced fluid_property(const H5Reader& h5, const std::string& file, const char* 
 
 }  // namespace
 
+int snapshot_index(const H5Reader& h5, const std::string& file, std::optional<int> chosen) {
+  if (!h5.exists("/snapshots")) throw InputError(file, 0, "group '/snapshots'", "missing from the file");
+  std::vector<int> snaps;
+  for (const auto& name : h5.children("/snapshots"))
+    if (is_snapshot_name(name)) snaps.push_back(std::stoi(name));
+  std::sort(snaps.begin(), snaps.end());
+  if (snaps.empty()) throw InputError(file, 0, "group '/snapshots'", "holds no snapshot (NNNNNN groups)");
+  if (!chosen) return snaps.back();
+  if (!std::binary_search(snaps.begin(), snaps.end(), *chosen))
+    throw InputError(file, 0, "--snapshot",
+                     fmt::format("snapshot {} not in the file (it has {} to {})", *chosen, snaps.front(), snaps.back()));
+  return *chosen;
+}
+
 ResultSnapshot read_result(const fs::path& path, const ResultOverrides& over) {
   const std::string file = path.string();
   if (!fs::exists(path)) throw InputError(file, 0, "", "no such file");
@@ -51,22 +65,7 @@ ResultSnapshot read_result(const fs::path& path, const ResultOverrides& over) {
   r.seed = h5.has_attribute("/", "seed") ? h5.attribute_int("/", "seed") : -1;
   r.scene_hash = h5.has_attribute("/", "scene_hash") ? h5.attribute_string("/", "scene_hash") : "";
 
-  // Snapshot: the last group under /snapshots unless one is chosen.
-  if (!h5.exists("/snapshots")) throw InputError(file, 0, "group '/snapshots'", "missing from the file");
-  std::vector<int> snaps;
-  for (const auto& name : h5.children("/snapshots"))
-    if (is_snapshot_name(name)) snaps.push_back(std::stoi(name));
-  std::sort(snaps.begin(), snaps.end());
-  if (snaps.empty()) throw InputError(file, 0, "group '/snapshots'", "holds no snapshot (NNNNNN groups)");
-  if (over.snapshot) {
-    if (!std::binary_search(snaps.begin(), snaps.end(), *over.snapshot))
-      throw InputError(file, 0, "--snapshot",
-                       fmt::format("snapshot {} not in the file (it has {} to {})", *over.snapshot, snaps.front(),
-                                   snaps.back()));
-    r.snapshot = *over.snapshot;
-  } else {
-    r.snapshot = snaps.back();
-  }
+  r.snapshot = snapshot_index(h5, file, over.snapshot);
   const std::string g = fmt::format("/snapshots/{:06d}", r.snapshot);
   r.time_s = h5.has_attribute(g, "time_s") ? h5.attribute_double(g, "time_s") : std::nan("");
 

@@ -17,6 +17,10 @@
 #include <string>
 #include <vector>
 
+namespace pastemix {
+class H5Reader;
+}
+
 namespace pastemix::analysis {
 
 struct ResultOverrides {
@@ -50,5 +54,9 @@ struct ResultSnapshot {
 // Reads and checks everything (finite positions, positive radii, densities and paste properties, solids in
 // (0, 1], material indices in range). Any defect -> InputError naming the file and the dataset or attribute.
 ResultSnapshot read_result(const std::filesystem::path& path, const ResultOverrides& overrides);
+
+// Index of the snapshot to read: `chosen` if the file has it, else the last NNNNNN group under /snapshots.
+// InputError (naming `file`) when /snapshots is missing or empty, or `chosen` is not in it.
+int snapshot_index(const H5Reader& h5, const std::string& file, std::optional<int> chosen = std::nullopt);
 
 }  // namespace pastemix::analysis

@@ -35,7 +35,7 @@ std::string material_name(const model::SceneDoc& d, const SweepOptions& o) {
 toml::array* factories(model::SceneDoc& d) { return d.root()["factory"].as_array(); }
 
 // Smallest interval lower sieve (m) over every [[factory]]'s PSD; 0 when no factory has one.
-double smallest_d_min(model::SceneDoc& d) {
+double smallest_d_min(model::SceneDoc d) {  // a copy: factories() hands out mutable nodes
   double m = 0.0;
   if (auto* fs = factories(d))
     for (auto& f : *fs)
@@ -82,7 +82,7 @@ model::SceneDoc at_value(const model::SceneDoc& base, const SweepOptions& o, dou
       }
       f.as_table()->insert_or_assign("psd", std::move(out));
     }
-    const double d0 = smallest_d_min(const_cast<model::SceneDoc&>(base)), d1 = smallest_d_min(d);
+    const double d0 = smallest_d_min(base), d1 = smallest_d_min(d);
     if (!o.fixed_dt && d0 > 0 && d1 > 0)
       d.set("time_step", lit(std::stod(base.get("time_step")) * d1 / d0));
   } else {
