@@ -192,7 +192,7 @@ long World::passes(long n, double h, bool initial, double& moved2) {
             // precede every kick; one thread, then the barrier of `single`.
             if (fluid_) {
 #pragma omp single
-              fluid_->update(p_);
+              fluid_->update(p_, &pairs_.i, &pairs_.j);
             }
             ws.update(walls_, t);
             const StepContext ctx{t, cfg_.dt, n_materials, cfg_.rolling};

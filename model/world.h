@@ -78,7 +78,7 @@ class World {
   // every pair-list rebuild): particles far from the paste pay one flag read per step.
   void set_fluid(std::shared_ptr<fluid::FluidField> field) {
     fluid_ = std::move(field);
-    if (fluid_) fluid_->set_candidate_margin(cfg_.skin);
+    if (fluid_) fluid_->set_candidate_margin(cfg_.skin), fluid_->set_step(cfg_.dt, cfg_.gravity);
   }
   const fluid::FluidField* fluid() const { return fluid_.get(); }
   const Profile& profile() const { return profile_; }

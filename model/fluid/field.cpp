@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include "model/fluid/buoyancy.h"
 
@@ -44,7 +45,8 @@ void FluidField::refresh(const Particles& p) {
   stale_ = false;
 }
 
-void FluidField::update(const Particles& p) {
+void FluidField::update(const Particles& p, const std::vector<std::uint32_t>* pair_i,
+                        const std::vector<std::uint32_t>* pair_j) {
   const std::size_t n = p.size();
   const bool listed = margin_ > 0.0;
   if (!listed || region_of_.size() != n) {  // every flag anew (no list, or particles were added)
@@ -83,6 +85,79 @@ void FluidField::update(const Particles& p) {
     for (std::size_t a = 0; a < n; ++a) visit(a);
   for (std::size_t k = 0; k < regions_.size(); ++k)
     if (regions_[k].surface_rise) surface_[k] = regions_[k].z_surface0 + wet[k] / regions_[k].area();
+
+  // Collective yield: the clusters every `every` steps (the smallest interval of the collective regions).
+  double interval = INFINITY;
+  for (const FluidRegion& r : regions_)
+    if (r.collective) interval = std::min(interval, r.collective_interval);
+  if (interval == INFINITY) return;
+  if (factor_.size() != n) factor_.assign(n, 1.0), factored_.clear(), since_clusters_ = 0;
+  const long every = dt_ > 0.0 ? std::max(1L, std::lround(interval / dt_)) : 1L;
+  if (since_clusters_ % every == 0) update_clusters(p, pair_i, pair_j);
+  ++since_clusters_;
+}
+
+void FluidField::update_clusters(const Particles& p, const std::vector<std::uint32_t>* pair_i,
+                                 const std::vector<std::uint32_t>* pair_j) {
+  if (!pair_i || !pair_j) throw std::logic_error("FluidField: a collective region needs the pair list in update()");
+  for (long a : factored_) factor_[static_cast<std::size_t>(a)] = 1.0;
+  factored_.clear();
+  stats_ = ClusterStats{};
+  const bool listed = margin_ > 0.0;
+  for (std::size_t k = 0; k < regions_.size(); ++k) {
+    const FluidRegion& reg = regions_[k];
+    if (!reg.collective) continue;
+    region_members_.clear();
+    region_d0_.clear();
+    auto take = [&](long a) {
+      const std::size_t i = static_cast<std::size_t>(a);
+      if (region_of_[i] != static_cast<int>(k)) return;
+      const double r = p.radius[i];
+      const double phi = std::min(1.0, v_sub_[i] / (4.0 / 3.0 * kPi * r * r * r));
+      region_members_.push_back(a);
+      region_d0_.push_back(phi * rest_drag(reg, p.mass[i], r, g_));
+    };
+    if (listed)
+      for (long a : members_) take(a);  // ascending (the candidates' order)
+    else
+      for (std::size_t a = 0; a < p.size(); ++a) take(static_cast<long>(a));
+    const CollectiveInput in{&p, &region_members_, &region_d0_, pair_i, pair_j, surface_[k], reg.fluid.yield_stress};
+    const ClusterStats s = collective_.factors(in, region_factor_);
+    for (std::size_t q = 0; q < region_members_.size(); ++q) {
+      if (region_factor_[q] == 1.0) continue;
+      factor_[static_cast<std::size_t>(region_members_[q])] = region_factor_[q];
+      factored_.push_back(region_members_[q]);
+    }
+    stats_.clusters += s.clusters;
+    stats_.largest = std::max(stats_.largest, s.largest);
+    stats_.min_factor = std::min(stats_.min_factor, s.min_factor);
+  }
+}
+
+namespace {
+
+// Yield number Y = tau_y / (|g| d (rho_p - rho_f)) of a particle, for curves that depend on it (constant per
+// particle, so each particle still sees one monotone Cd(Re') curve). A particle lighter than the fluid has no
+// finite Y: +inf (only its limit matters to such curves).
+double yield_number(const FluidRegion& reg, double mass, double radius, const Vec3& g) {
+  if (reg.fluid.yield_stress <= 0.0) return 0.0;
+  const double d = 2.0 * radius;
+  const double rho_p = mass / (4.0 / 3.0 * kPi * radius * radius * radius), gmag = norm(g);
+  return (rho_p > reg.fluid.density && gmag > 0.0) ? reg.fluid.yield_stress / (gmag * d * (rho_p - reg.fluid.density))
+                                                   : std::numeric_limits<double>::infinity();
+}
+
+// D(s) with or without the yield term (pi d / 2)^2 tau_y (the switch keeps tau_y inside Re').
+double yield_off(const FluidRegion& reg, double d) {
+  return reg.yield_term ? 0.0 : 0.25 * kPi * kPi * d * d * reg.fluid.yield_stress;
+}
+
+}  // namespace
+
+double FluidField::rest_drag(const FluidRegion& reg, double mass, double radius, const Vec3& g) const {
+  const double y = yield_number(reg, mass, radius, g), d = 2.0 * radius;
+  auto cd = [&](double re) { return reg.curve.cd(re, y); };
+  return drag_magnitude(reg.fluid, cd, kRestSpeed, d) - yield_off(reg, d);
 }
 
 Vec3 FluidField::kick(long a, const Vec3& v, const Vec3& F, double mass, double radius, double h,
@@ -94,30 +169,23 @@ Vec3 FluidField::kick(long a, const Vec3& v, const Vec3& F, double mass, double 
   Vec3 force = F;
   if (reg.buoyancy) force -= g * (reg.fluid.density * vs);
   const double d = 2.0 * radius;
-  // D(s) with or without the yield term (pi d / 2)^2 tau_y (the switch keeps tau_y inside Re').
-  const double yield_off = reg.yield_term ? 0.0 : 0.25 * kPi * kPi * d * d * reg.fluid.yield_stress;
-  // Yield number Y = tau_y / (|g| d (rho_p - rho_f)) of this particle, for curves that depend on it (constant
-  // per particle, so each particle still sees one monotone Cd(Re') curve). A particle lighter than the fluid
-  // has no finite Y: +inf (only its limit matters to such curves).
-  const double rho_p = mass / volume, gmag = norm(g);
-  double y = 0.0;
-  if (reg.fluid.yield_stress > 0.0)
-    y = (rho_p > reg.fluid.density && gmag > 0.0)
-            ? reg.fluid.yield_stress / (gmag * d * (rho_p - reg.fluid.density))
-            : std::numeric_limits<double>::infinity();
+  const double off = yield_off(reg, d);
+  const double y = yield_number(reg, mass, radius, g);
   auto cd = [&](double re) { return reg.curve.cd(re, y); };
-  auto magnitude = [&](double s) { return drag_magnitude(reg.fluid, cd, s, d) - yield_off; };
+  auto magnitude = [&](double s) { return drag_magnitude(reg.fluid, cd, s, d) - off; };
   // m dv/dt = F - phi D  <=>  (m/phi) dv/dt = F/phi - D: the kernel's kick with scaled mass and force.
   const double m_eff = mass / phi;
   const fluid::Vec Fv{force.x / phi, force.y / phi, force.z / phi};
   const fluid::Vec v0{v.x, v.y, v.z};
   // drag_kick_implicit of bingham_drag.h, with `magnitude` in place of drag_magnitude (the yield switch).
   const double d0 = magnitude(kRestSpeed);
+  // The cluster's share of the rest resistance (collective.h); the speed-dependent part stays the sphere's.
+  const double d0_held = d0 * yield_factor(a);
   const double s0 = norm(v);
   double s_eval = s0;
   fluid::Vec out = v0;
   for (int it = 0; it < 3; ++it) {
-    DragSplit split{d0, 0.0};
+    DragSplit split{d0_held, 0.0};
     const double s = s_eval > 1e3 * kRestSpeed ? s_eval : 1e-9;
     split.k = std::max(0.0, (magnitude(s) - d0) / s);
     out = drag_kick(v0, Fv, m_eff, h, split);

@@ -35,6 +35,7 @@
 
 #include "base/drag_curves.h"
 #include "model/fluid/bingham_drag.h"
+#include "model/fluid/collective.h"
 #include "model/particles.h"
 
 namespace pastemix::model::fluid {
@@ -49,6 +50,9 @@ struct FluidRegion {
   std::string rheology = "newtonian";                 // "newtonian" | "bingham"
   double solids_fraction = 0.0;                       // -, mass fraction of solids (for the analysis maps)
   bool buoyancy = true, yield_term = true, partial_submergence = true, surface_rise = true;
+  // Collective yield resistance of touching spheres (collective.h): off unless the scene asks for it.
+  bool collective = false;
+  double collective_interval = 5e-4;  // s of simulated time between two cluster updates
 
   double area() const { return (x_max - x_min) * (y_max - y_min); }
   bool contains_xy(double x, double y) const { return x >= x_min && x <= x_max && y >= y_min && y <= y_max; }
@@ -58,8 +62,13 @@ class FluidField {
  public:
   explicit FluidField(std::vector<FluidRegion> regions);
 
-  // Region membership and submerged volumes at the current positions; then the surfaces rise.
-  void update(const Particles& p);
+  // Region membership and submerged volumes at the current positions; then the surfaces rise. With a
+  // collective region, also its clusters every collective_interval: they need the candidate pairs (dense
+  // indices, any superset of the touching pairs: the World's pair list).
+  void update(const Particles& p, const std::vector<std::uint32_t>* pair_i = nullptr,
+              const std::vector<std::uint32_t>* pair_j = nullptr);
+  // The step (s) and gravity (m/s2) of the World: set before the first update() when a region is collective.
+  void set_step(double dt, const Vec3& g) { dt_ = dt, g_ = g; }
   // Candidate list (see above): margin in m (the Verlet skin); stale at every pair-list rebuild.
   void set_candidate_margin(double margin) { margin_ = margin, stale_ = true; }
   void mark_stale() { stale_ = true; }
@@ -74,6 +83,10 @@ class FluidField {
   const std::vector<FluidRegion>& regions() const { return regions_; }
   double surface_z(std::size_t k) const { return surface_[k]; }
   const std::vector<double>& surfaces() const { return surface_; }
+  // Factor on particle a's rest resistance from its cluster (1: its own law).
+  double yield_factor(long a) const { return factor_.empty() ? 1.0 : factor_[static_cast<std::size_t>(a)]; }
+  // The clusters of the last update, summed over the regions.
+  const ClusterStats& cluster_stats() const { return stats_; }
 
  private:
   std::vector<FluidRegion> regions_;
@@ -86,6 +99,21 @@ class FluidField {
   std::vector<double> surface_at_refresh_;  // m, per region
   std::vector<double> wet_;                 // m3 per region, scratch of update()
   void refresh(const Particles& p);
+  // Collective yield (collective.h): per-particle factor (empty while no region is collective), the
+  // particles it was last set for, steps since the last cluster update.
+  double dt_ = 0.0;
+  Vec3 g_{0, 0, -9.81};
+  std::vector<double> factor_;
+  std::vector<long> factored_;
+  long since_clusters_ = 0;
+  ClusterStats stats_;
+  CollectiveYield collective_;
+  std::vector<long> region_members_;
+  std::vector<double> region_d0_, region_factor_;
+  void update_clusters(const Particles& p, const std::vector<std::uint32_t>* pair_i,
+                       const std::vector<std::uint32_t>* pair_j);
+  // D(0+) of particle a in region reg (N, whole sphere: the submerged fraction not applied).
+  double rest_drag(const FluidRegion& reg, double mass, double radius, const Vec3& g) const;
 };
 
 }  // namespace pastemix::model::fluid

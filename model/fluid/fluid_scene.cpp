@@ -122,6 +122,10 @@ std::vector<FluidRegion> read_fluid_regions(const Params& root, const std::strin
     r.yield_term = f.boolean_or("yield_term", true);
     r.partial_submergence = f.boolean_or("partial_submergence", true);
     r.surface_rise = f.boolean_or("surface_rise", true);
+    r.collective = f.choice_or("collective", {"none", "bearing_capacity"}, "none") == "bearing_capacity";
+    r.collective_interval = f.number_or("collective_interval", r.collective_interval, Range::positive);
+    if (r.collective && r.fluid.yield_stress <= 0.0)
+      f.fail("collective", "the bearing-capacity rule needs a yield stress (a bingham fluid with yield_stress > 0)");
     out.push_back(std::move(r));
   }
   return out;

@@ -15,6 +15,9 @@
 //   curve_from = "parameters.toml"       # lab reduce output (relative to the scene file): drag_curve.chosen
 //   solids_fraction = 0.75               # -, optional (0), recorded for the analysis maps
 //   buoyancy = true  yield_term = true  partial_submergence = true  surface_rise = true   # switches
+//   collective = "bearing_capacity"      # or "none" (default): touching spheres share the paste's bearing
+//                                        # capacity (collective.h); needs yield_stress > 0
+//   collective_interval = 5e-4           # s, optional: simulated time between two cluster updates
 //
 // Checks: positive density and viscosities, non-negative yield stress, extents min < max, surface above the
 // bottom, a known curve with admissible coefficients (exactly one of curve / curve_from).

@@ -35,6 +35,57 @@ std::filesystem::path source_dir() { return PASTEMIX_SOURCE_DIR; }
 // engine-vs-solver comparison, and it needs no lab reduce run.
 const drag::DragCurve kBlend{drag::CurveId::power_blend, {24.0, 1.0, 0.5, 0.4, 1.5}};
 
+// ~300 rocks fall from above into a paste that fills half of the box (the fluid hook tests).
+const std::string kCandidatesScene = R"(
+seed = 5
+time_step = 2e-5
+end_time = 1.0
+[domain]
+min = [-0.02, -0.02, -0.02]
+max = [0.12, 0.12, 0.4]
+[contact]
+law = "hertz_mindlin"
+rolling = "constant_torque"
+[neighbor]
+skin = 1.25e-3
+[[material]]
+name = "rock"
+density = 2760
+youngs_modulus = 4.68e7
+poisson_ratio = 0.19
+[[interaction]]
+materials = "rock/rock"
+restitution = 0.79
+friction = 0.466
+rolling_friction = 0.15
+[[wall]]
+name = "box"
+type = "box"
+material = "rock"
+min = [0.0, 0.0, 0.0]
+max = [0.1, 0.1, 0.35]
+[[fluid]]
+x = [0.0, 0.05]
+y = [0.0, 0.1]
+bottom = 0.0
+surface = 0.03
+density = 1843
+rheology = "bingham"
+yield_stress = 10
+plastic_viscosity = 0.7
+curve = "published_4_19"
+[[factory]]
+material = "rock"
+mass = 0.02
+shape = "box"
+min = [0.005, 0.005, 0.05]
+max = [0.095, 0.095, 0.12]
+[[factory.psd]]
+d_min = 2.5e-3
+d_max = 5.0e-3
+fraction = 1.0
+)";
+
 SphereRun paste_sphere() {
   SphereRun r;
   r.d = 0.01, r.rho_p = 2700, r.rho_f = 1500, r.eta = 0.1, r.tau_y = 5.0, r.curve = kBlend, r.dt = 1e-4;
@@ -175,6 +226,8 @@ TEST_CASE("fluid scene: bad [[fluid]] tables are InputErrors naming the line") {
   fails("buoyancy = true", "buoyancy = true\nviscosity = 1", "unknown key");
   fails("surface = 0.2", "surface = -0.1", "above the bottom");
   fails("curve = \"power_blend\"", "curve_from = \"missing.toml\"", "no such file");
+  fails("buoyancy = true", "buoyancy = true\ncollective = \"cluster\"", "collective");
+  fails("buoyancy = true", "buoyancy = true\ncollective = \"bearing_capacity\"\ncollective_interval = 0", "collective_interval");
 }
 
 TEST_CASE("fluid scene: curve_from loads the chosen curve and its coefficients from a parameters.toml") {
@@ -329,58 +382,9 @@ TEST_CASE("fluid switches: buoyancy, yield_term, partial_submergence and surface
 }
 
 TEST_CASE("fluid hook: the candidate list (particles near a region) gives the same bits as testing every particle") {
-  // ~300 rocks fall from above into a paste that fills half of the box: some stay beside the region, the
-  // rest cross its surface during the run, and the surface rises (the candidate list must follow it).
-  const std::string text = R"(
-seed = 5
-time_step = 2e-5
-end_time = 1.0
-[domain]
-min = [-0.02, -0.02, -0.02]
-max = [0.12, 0.12, 0.4]
-[contact]
-law = "hertz_mindlin"
-rolling = "constant_torque"
-[neighbor]
-skin = 1.25e-3
-[[material]]
-name = "rock"
-density = 2760
-youngs_modulus = 4.68e7
-poisson_ratio = 0.19
-[[interaction]]
-materials = "rock/rock"
-restitution = 0.79
-friction = 0.466
-rolling_friction = 0.15
-[[wall]]
-name = "box"
-type = "box"
-material = "rock"
-min = [0.0, 0.0, 0.0]
-max = [0.1, 0.1, 0.35]
-[[fluid]]
-x = [0.0, 0.05]
-y = [0.0, 0.1]
-bottom = 0.0
-surface = 0.03
-density = 1843
-rheology = "bingham"
-yield_stress = 10
-plastic_viscosity = 0.7
-curve = "published_4_19"
-[[factory]]
-material = "rock"
-mass = 0.02
-shape = "box"
-min = [0.005, 0.005, 0.05]
-max = [0.095, 0.095, 0.12]
-[[factory.psd]]
-d_min = 2.5e-3
-d_max = 5.0e-3
-fraction = 1.0
-)";
-  const Scene scene = parse_scene(text, "candidates.toml");
+  // Some rocks stay beside the region, the rest cross its surface during the run, and the surface rises
+  // (the candidate list must follow it).
+  const Scene scene = parse_scene(kCandidatesScene, "candidates.toml");
   World listed = make_world(scene);
   World all = make_world(scene);
   REQUIRE(all.fluid() != nullptr);
@@ -423,4 +427,37 @@ fraction = 1.0
     same2 = same2 && p.x[a].x == r.x[a].x && p.x[a].y == r.x[a].y && p.x[a].z == r.x[a].z && p.v[a].z == r.v[a].z;
   CHECK(same2);
   CHECK(two.fluid()->surface_z(0) == listed.fluid()->surface_z(0));
+}
+
+TEST_CASE("fluid hook: with the collective yield rule, 2 threads in batches give the same bits as 1 thread") {
+  // The same rocks in a stiffer paste (30 Pa) with clusters sharing its bearing capacity (collective.h).
+  std::string text = kCandidatesScene;
+  const auto at = text.find("yield_stress = 10");
+  REQUIRE(at != std::string::npos);
+  text.replace(at, 17, "yield_stress = 30\ncollective = \"bearing_capacity\"");
+  const Scene scene = parse_scene(text, "collective.toml");
+  World one = make_world(scene);
+  long most_clusters = 0;
+  double least_factor = 1.0;
+  for (int s = 0; s < 12000; s += 400) {
+    one.advance(400);
+    most_clusters = std::max(most_clusters, one.fluid()->cluster_stats().clusters);
+    least_factor = std::min(least_factor, one.fluid()->cluster_stats().min_factor);
+  }
+  INFO("most clusters " << most_clusters << ", smallest factor " << least_factor);
+  CHECK(most_clusters > 0);  // the rule did act
+  CHECK(least_factor < 1.0);
+  const long saved = parallel_min_items;
+  parallel_min_items = 0;
+  omp_set_num_threads(2);
+  World two = make_world(scene);
+  for (int s = 0; s < 12000; s += 400) two.advance(400);
+  omp_set_num_threads(omp_get_num_procs());
+  parallel_min_items = saved;
+  const auto& p = one.particles();
+  const auto& r = two.particles();
+  bool same = true;
+  for (std::size_t a = 0; a < p.size(); ++a)
+    same = same && p.x[a].x == r.x[a].x && p.x[a].y == r.x[a].y && p.x[a].z == r.x[a].z && p.v[a].z == r.v[a].z;
+  CHECK(same);
 }

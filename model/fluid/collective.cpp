@@ -1,0 +1,166 @@
+// SPDX-License-Identifier: MIT
+#include "model/fluid/collective.h"
+
+#include <algorithm>
+#include <cmath>
+#include <tuple>
+
+#include "model/fluid/buoyancy.h"
+
+namespace pastemix::model::fluid {
+
+double skempton_nc(double breadth, double embedment) {
+  if (!(breadth > 0.0)) return 6.0;
+  return std::min(9.0, 6.0 * (1.0 + 0.2 * std::max(0.0, embedment) / breadth));
+}
+
+double disc_union_area(const std::vector<double>& cx, const std::vector<double>& cy, const std::vector<double>& r,
+                       double h) {
+  const std::size_t n = cx.size();
+  if (n == 0) return 0.0;
+  double y_lo = cy[0] - r[0], y_hi = cy[0] + r[0];
+  for (std::size_t k = 1; k < n; ++k) y_lo = std::min(y_lo, cy[k] - r[k]), y_hi = std::max(y_hi, cy[k] + r[k]);
+  // At most 4000 lines: the rows' cost stays bounded for a wide PSD (a 50 mm rock beside 1 mm fines).
+  const double span = y_hi - y_lo;
+  if (!(span > 0.0)) return 0.0;
+  const long rows = std::max(1L, std::min(4000L, static_cast<long>(std::ceil(span / h))));
+  const double step = span / static_cast<double>(rows);
+  // (row, x0, x1) for every strip a disc crosses: the interval centred on the disc whose length is the
+  // disc's mean chord over the strip (its exact area in the strip / the strip's width). So a disc alone has
+  // its exact area; where two discs share a strip (overlapping, or one above the other within a strip's
+  // width) their intervals are merged, an error of order (h / r) of the shared strips' area.
+  std::vector<std::tuple<long, double, double>> iv;
+  auto primitive = [](double t, double r) {  // integral of 2 sqrt(r^2 - y^2) dy from 0 to t, |t| <= r
+    return t * std::sqrt(std::max(0.0, r * r - t * t)) + r * r * std::asin(std::clamp(t / r, -1.0, 1.0));
+  };
+  for (std::size_t k = 0; k < n; ++k) {
+    if (!(r[k] > 0.0)) continue;
+    const long k_lo = std::max(0L, static_cast<long>(std::floor((cy[k] - r[k] - y_lo) / step)));
+    const long k_hi = std::min(rows - 1, static_cast<long>(std::floor((cy[k] + r[k] - y_lo) / step)));
+    for (long row = k_lo; row <= k_hi; ++row) {
+      const double ya = std::max(y_lo + static_cast<double>(row) * step - cy[k], -r[k]);
+      const double yb = std::min(y_lo + static_cast<double>(row + 1) * step - cy[k], r[k]);
+      if (yb <= ya) continue;
+      const double half = 0.5 * (primitive(yb, r[k]) - primitive(ya, r[k])) / step;
+      iv.emplace_back(row, cx[k] - half, cx[k] + half);
+    }
+  }
+  std::sort(iv.begin(), iv.end());
+  double length = 0.0;
+  for (std::size_t s = 0; s < iv.size();) {
+    const long row = std::get<0>(iv[s]);
+    double a = std::get<1>(iv[s]), b = std::get<2>(iv[s]);
+    for (++s; s < iv.size() && std::get<0>(iv[s]) == row; ++s) {
+      if (std::get<1>(iv[s]) > b) {
+        length += b - a;
+        a = std::get<1>(iv[s]);
+      }
+      b = std::max(b, std::get<2>(iv[s]));
+    }
+    length += b - a;
+  }
+  return length * step;
+}
+
+double lens_area(double r1, double r2, double c) {
+  if (c >= r1 + r2) return 0.0;
+  if (c <= std::abs(r1 - r2)) return kPi * std::min(r1, r2) * std::min(r1, r2);
+  const double a1 = std::acos(std::clamp((c * c + r1 * r1 - r2 * r2) / (2.0 * c * r1), -1.0, 1.0));
+  const double a2 = std::acos(std::clamp((c * c + r2 * r2 - r1 * r1) / (2.0 * c * r2), -1.0, 1.0));
+  const double k = (-c + r1 + r2) * (c + r1 - r2) * (c - r1 + r2) * (c + r1 + r2);
+  return r1 * r1 * a1 + r2 * r2 * a2 - 0.5 * std::sqrt(std::max(0.0, k));
+}
+
+long CollectiveYield::find(long k) {
+  while (parent_[static_cast<std::size_t>(k)] != k) {
+    const long up = parent_[static_cast<std::size_t>(parent_[static_cast<std::size_t>(k)])];
+    parent_[static_cast<std::size_t>(k)] = up;  // path halving
+    k = up;
+  }
+  return k;
+}
+
+ClusterStats CollectiveYield::factors(const CollectiveInput& in, std::vector<double>& factor) {
+  const Particles& p = *in.particles;
+  const std::vector<long>& m = *in.members;
+  const std::size_t nm = m.size();
+  factor.assign(nm, 1.0);
+  ClusterStats stats;
+  if (nm < 2 || in.yield_stress <= 0.0) return stats;
+
+  slot_.assign(p.size(), -1);
+  parent_.resize(nm);
+  for (std::size_t k = 0; k < nm; ++k) slot_[static_cast<std::size_t>(m[k])] = static_cast<long>(k), parent_[k] = static_cast<long>(k);
+  cover_.assign(nm, 0.0);
+  const auto& pi = *in.pair_i;
+  const auto& pj = *in.pair_j;
+  for (std::size_t e = 0; e < pi.size(); ++e) {
+    const long sa = slot_[pi[e]], sb = slot_[pj[e]];
+    if (sa < 0 || sb < 0) continue;
+    const double ra = p.radius[pi[e]], rb = p.radius[pj[e]];
+    const double gap = norm(p.x[pi[e]] - p.x[pj[e]]) - ra - rb;
+    if (gap >= kTouchGap * std::min(ra, rb)) continue;
+    const long a = find(sa), b = find(sb);
+    if (a != b) parent_[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
+    // The upper sphere of the two is shadowed by the lower one where their horizontal projections overlap.
+    const Vec3 &xa = p.x[pi[e]], &xb = p.x[pj[e]];
+    const double c = std::hypot(xa.x - xb.x, xa.y - xb.y);
+    if (xa.z > xb.z) cover_[static_cast<std::size_t>(sa)] += lens_area(ra, rb, c);
+    else if (xb.z > xa.z) cover_[static_cast<std::size_t>(sb)] += lens_area(rb, ra, c);
+  }
+  // Members grouped by root, ascending within each group (a counting sort keeps the order): every sum below
+  // runs in ascending particle order, whatever the union order was.
+  start_.assign(nm + 1, 0);
+  for (std::size_t k = 0; k < nm; ++k) ++start_[static_cast<std::size_t>(find(static_cast<long>(k))) + 1];
+  for (std::size_t k = 0; k < nm; ++k) start_[k + 1] += start_[k];
+  order_.resize(nm);
+  {
+    std::vector<long> fill(start_.begin(), start_.end() - 1);
+    for (std::size_t k = 0; k < nm; ++k) order_[static_cast<std::size_t>(fill[static_cast<std::size_t>(find(static_cast<long>(k)))]++)] = static_cast<long>(k);
+  }
+  const std::vector<double>& d0 = *in.rest_drag;
+  for (std::size_t root = 0; root < nm; ++root) {
+    const long b = start_[root], e = start_[root + 1];
+    if (e - b < 2) continue;
+    ++stats.clusters;
+    stats.largest = std::max(stats.largest, e - b);
+    double sum = 0.0, sum_all = 0.0, strongest = 0.0, lowest = INFINITY, r_min = INFINITY;
+    cx_.clear(), cy_.clear(), cr_.clear();
+    for (long q = b; q < e; ++q) {
+      const long k = order_[static_cast<std::size_t>(q)];
+      const std::size_t a = static_cast<std::size_t>(m[static_cast<std::size_t>(k)]);
+      const double exposed = std::max(0.0, 1.0 - cover_[static_cast<std::size_t>(k)] / (kPi * p.radius[a] * p.radius[a]));
+      cover_[static_cast<std::size_t>(k)] = exposed;  // from here on: the exposed fraction
+      sum += exposed * d0[static_cast<std::size_t>(k)];
+      sum_all += d0[static_cast<std::size_t>(k)];
+      strongest = std::max(strongest, exposed * d0[static_cast<std::size_t>(k)]);
+      const double r = p.radius[a], z = p.x[a].z;
+      lowest = std::min(lowest, z - r);
+      r_min = std::min(r_min, r);
+      // Horizontal section of the wetted part: the full disc once the centre is submerged, else the cap's base.
+      const double above = z - in.surface;
+      const double rw = above <= 0.0 ? r : std::sqrt(std::max(0.0, r * r - above * above));
+      cx_.push_back(p.x[a].x), cy_.push_back(p.x[a].y), cr_.push_back(rw);
+    }
+    if (!(sum > 0.0)) continue;
+    // Strips r_min / 16 wide: the footprint's area to ~0.2 % (tested), far below the spread of N_c (5.14-6).
+    const double area = disc_union_area(cx_, cy_, cr_, r_min / 16.0);
+    const double breadth = std::sqrt(4.0 * area / kPi);
+    const double embed = std::max(0.0, in.surface - lowest);
+    // End bearing: the exposed underside pushing through (sum), at most the footing's; plus the side shear.
+    const double end = std::min(sum, in.yield_stress * skempton_nc(breadth, embed) * area);
+    const double side = in.yield_stress * kPi * breadth * embed;
+    // At most what the spheres would resist each on its own (that mechanism is always possible), and at
+    // least the most exposed sphere alone.
+    const double resist = std::max(strongest, std::min(sum_all, end + side));
+    const double f = resist / sum;
+    for (long q = b; q < e; ++q) {
+      const std::size_t k = static_cast<std::size_t>(order_[static_cast<std::size_t>(q)]);
+      factor[k] = cover_[k] * f;
+      stats.min_factor = std::min(stats.min_factor, factor[k]);
+    }
+  }
+  return stats;
+}
+
+}  // namespace pastemix::model::fluid
