@@ -212,6 +212,17 @@ TEST_CASE("outflow: more escaped mass than max_escaped_fraction stops the run wi
   CHECK(w.escaped().empty());  // nothing recorded or removed: the run stopped
   CHECK(w.particles().size() == 2);
 
+  // With max_escaped_fraction = 1 every sphere may leave: the run goes on with none left.
+  std::string all = fall;
+  all.replace(all.find("on_exit = \"remove\"\n"), 19, "on_exit = \"remove\"\nmax_escaped_fraction = 1\n");
+  World empty = make_world(model::test::scene_from(all));
+  for (int k = 0; k < 5000; ++k) empty.step();
+  CHECK(empty.particles().size() == 0);
+  REQUIRE(empty.escaped().size() == 2);
+  CHECK(empty.escaped()[0].id == 0);
+  CHECK(empty.escaped()[1].id == 1);
+  CHECK(empty.escaped_mass() == doctest::Approx(2 * 2760 * 4.0 / 3.0 * units::pi * 1.25e-7).epsilon(1e-12));
+
   // NaN still stops the run under on_exit = remove (not a removal).
   World n = make_world(model::test::scene_from(fall));
   n.particles().v[1].x = std::nan("");
