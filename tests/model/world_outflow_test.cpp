@@ -148,8 +148,8 @@ TEST_CASE("outflow: removing a lower-index particle keeps the remaining contacts
 }
 
 TEST_CASE("outflow: a removal gives the same bits on 1 and 2 threads (and in batches)") {
-  // A pile thrown down onto a floor, and four spheres shot sideways out of the 20 x 20 cm domain through
-  // its edge while the pile's contacts (pairs and walls, histories in use) go on.
+  // A pile thrown down onto a floor into a pool of paste, and four spheres shot sideways out of the 20 x 20 cm
+  // domain through its edge while the pile's contacts (pairs and walls, histories in use) go on.
   auto run = [](int threads, long batch) {
     omp_set_num_threads(threads);
     const long saved = parallel_min_items;
@@ -161,12 +161,20 @@ TEST_CASE("outflow: a removal gives the same bits on 1 and 2 threads (and in bat
         "[[wall]]\nname = \"floor\"\ntype = \"plane\"\nmaterial = \"rock\"\npoint = [0, 0, 0]\nnormal = [0, 0, 1]\n"
         "[[factory]]\nmaterial = \"rock\"\nmass = 0.02\nshape = \"cylinder\"\ncenter = [0, 0]\nradius = 0.025\n"
         "z_min = 0.002\nz_max = 0.06\nvelocity = [0, 0, -1.5]\n[[factory.psd]]\nd_min = 5e-3\nd_max = 8e-3\n"
-        "fraction = 1.0\n" +
+        "fraction = 1.0\n"
+        // Paste under the pile: the fluid hook's per-particle flags and candidates must follow the removals.
+        "[[fluid]]\nname = \"paste\"\nx = [-0.03, 0.03]\ny = [-0.03, 0.03]\nbottom = 0.0\nsurface = 0.015\n"
+        "density = 1843\nrheology = \"bingham\"\nyield_stress = 138\nplastic_viscosity = 0.7\n"
+        "curve = \"published_4_19\"\nsolids_fraction = 0.75\n" +
         sphere(0.003, "[0.04, 0.0, 0.01]", "[4, 0, 0]") + sphere(0.003, "[-0.04, 0.0, 0.01]", "[-4, 0, 0]") +
         sphere(0.003, "[0.0, 0.04, 0.01]", "[0, 4, 0]") + sphere(0.003, "[0.0, -0.04, 0.01]", "[0, -4.5, 0]");
     World w = make_world(model::test::scene_from(text));
     for (long k = 0; k < 6000; k += batch) w.advance(batch);  // 0.024 s: out at ~0.015 s; the pile collides
     const Energies e = w.energies();
+    REQUIRE(w.fluid() != nullptr);
+    long wet = 0;
+    for (std::size_t a = 0; a < w.particles().size(); ++a) wet += w.fluid()->inside(static_cast<long>(a));
+    CHECK(wet > 0);
     omp_set_num_threads(omp_get_num_procs());
     parallel_min_items = saved;
     return std::make_tuple(w.particles().x, w.particles().v, w.escaped(), e.pair_contacts);
