@@ -125,6 +125,7 @@ MixingInputs inputs_for(const BlockLayout& L, const ResultSnapshot& r, double K,
   in.K = K;
   in.rho_s = o.rho_s;
   in.e_f = o.e_f;
+  in.escaped_mass = r.escaped_mass;
   return in;
 }
 

@@ -49,6 +49,7 @@ void run_one(const model::Scene& scene, const std::string& out_dir, bool quiet, 
   fmt::print("{} particles, {} steps of {:.3g} s, {} thread(s)\n", scene.particles.size(), r.steps, scene.config.dt,
              r.threads);
   fmt::print("{}", r.profile_table);
+  fmt::print("{}", r.escaped_line());
   fmt::print("wrote {} and {}\n", r.h5.string(), r.xmf.string());
 }
 

@@ -301,6 +301,27 @@ void WallContacts::rebuild(const std::vector<Wall>& w, const Particles& p, doubl
   touching.swap(new_touch);
 }
 
+void WallContacts::remove_particles(const std::vector<std::uint32_t>& map) {
+  const std::size_t wd = static_cast<std::size_t>(width);
+  std::uint32_t out = 0;
+  std::size_t next = 0;  // new particle index
+  for (std::size_t a = 0; a + 1 < start.size(); ++a) {
+    const std::uint32_t c0 = start[a], c1 = start[a + 1];
+    if (map[a] == Particles::kGone) continue;
+    start[next++] = out;  // next <= a: start[a + 1] is still unread old data
+    for (std::uint32_t c = c0; c < c1; ++c, ++out) {
+      near[out] = near[c];
+      touching[out] = touching[c];
+      std::copy_n(history.data() + c * wd, wd, history.data() + out * wd);
+    }
+  }
+  start.resize(next + 1);
+  start[next] = out;
+  near.resize(out);
+  touching.resize(out);
+  history.resize(out * wd);
+}
+
 void PairList::rebuild(CandidatePairs& c, const Particles& p, int n_materials) {
   const std::size_t n = c.i.size();
   // The new history and flags go into the spare buffers (their capacity kept between rebuilds).
@@ -313,8 +334,9 @@ void PairList::rebuild(CandidatePairs& c, const Particles& p, int n_materials) {
   law_index.resize(n);
   // History carry-over: a new pair (a, b) looks for (a, b) among the old pairs of a (its old CSR row, a
   // few entries). Only touching pairs carry a spring (a pair stops touching -> its history is zeroed).
-  // Dense indices are stable (particles are never reordered or removed), so (a, b) names the same two
-  // particles in both lists, and a < b in both (build_pairs), so the stored spring needs no sign flip.
+  // Dense indices are the same in both lists (a removal renames the old list first: remove_particles), so
+  // (a, b) names the same two particles in both, and a < b in both (build_pairs; a removal keeps the
+  // order), so the stored spring needs no sign flip.
   const bool carry = !start.empty() && width > 0;
   const long nn = static_cast<long>(n);
 #pragma omp parallel for schedule(static) if (nn >= parallel_min_items)
@@ -340,9 +362,13 @@ void PairList::rebuild(CandidatePairs& c, const Particles& p, int n_materials) {
   history.swap(new_hist);
   touching.swap(new_touch);
   threads = 0;  // partition() again
-  // CSR by first particle (the carry-over at the next rebuild looks up (a, b) among the pairs with i = a):
-  // count, prefix sums, fill with start as the cursor, shift back by one.
-  const std::size_t np = p.size();
+  index_by_first(p.size());
+}
+
+// CSR by first particle (the carry-over at the next rebuild looks up (a, b) among the pairs with i = a):
+// count, prefix sums, fill with start as the cursor, shift back by one.
+void PairList::index_by_first(std::size_t np) {
+  const std::size_t n = i.size();
   start.assign(np + 1, 0);
   for (std::size_t k = 0; k < n; ++k) ++start[i[k] + 1];
   for (std::size_t q = 0; q < np; ++q) start[q + 1] += start[q];
@@ -350,6 +376,32 @@ void PairList::rebuild(CandidatePairs& c, const Particles& p, int n_materials) {
   for (std::size_t k = 0; k < n; ++k) entry[start[i[k]]++] = static_cast<std::uint32_t>(k);
   for (std::size_t q = np; q >= 1; --q) start[q] = start[q - 1];
   start[0] = 0;
+}
+
+void PairList::remove_particles(const std::vector<std::uint32_t>& map, std::size_t np) {
+  const std::size_t n = i.size(), ws = static_cast<std::size_t>(width);
+  std::size_t out = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::uint32_t a = map[i[k]], b = map[j[k]];
+    if (a == Particles::kGone || b == Particles::kGone) continue;
+    i[out] = a;
+    j[out] = b;
+    r_star[out] = r_star[k];
+    m_star[out] = m_star[k];
+    law_index[out] = law_index[k];
+    touching[out] = touching[k];
+    std::copy_n(history.data() + k * ws, ws, history.data() + out * ws);  // out <= k: a forward copy
+    ++out;
+  }
+  i.resize(out);
+  j.resize(out);
+  r_star.resize(out);
+  m_star.resize(out);
+  law_index.resize(out);
+  touching.resize(out);
+  history.resize(out * ws);
+  threads = 0;
+  index_by_first(np);
 }
 
 void PairList::partition(int n_threads, const std::vector<Vec3>& x) {

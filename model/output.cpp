@@ -77,6 +77,36 @@ RunOutput::RunOutput(const std::filesystem::path& h5_path, std::string h5_final_
 
 RunOutput::~RunOutput() = default;
 
+void RunOutput::write_escaped(const World& w) {
+  const std::vector<Escape>& esc = w.escaped();
+  const std::uint64_t n = esc.size();
+  std::vector<std::int64_t> id;
+  std::vector<std::int32_t> mat;
+  std::vector<double> time, mass, radius;
+  std::vector<Vec3> x, v;
+  for (const Escape& e : esc) {
+    id.push_back(e.id);
+    mat.push_back(e.material);
+    time.push_back(e.time);
+    mass.push_back(e.mass);
+    radius.push_back(e.radius);
+    x.push_back(e.x);
+    v.push_back(e.v);
+  }
+  h5_->write("/escaped/id", id, {n});
+  h5_->write("/escaped/time", time, {n});
+  h5_->write("/escaped/mass", mass, {n});
+  h5_->write("/escaped/radius", radius, {n});
+  h5_->write("/escaped/material", mat, {n});
+  h5_->write("/escaped/position", flat(x), {n, 3});
+  h5_->write("/escaped/velocity", flat(v), {n, 3});
+  const bool remove = w.config().on_exit == ExitRule::remove;
+  h5_->attribute("/", "on_exit", remove ? "remove" : "stop");
+  if (remove) h5_->attribute("/", "max_escaped_fraction", w.config().max_escaped_fraction);
+  h5_->attribute("/", "escaped_count", static_cast<std::int64_t>(n));
+  h5_->attribute("/", "escaped_mass", w.escaped_mass());
+}
+
 void RunOutput::snapshot(const World& w) {
   const Particles& p = w.particles();
   const std::string g = group(snap_times_.size());
@@ -114,6 +144,7 @@ std::string RunOutput::finish(const World& w, double wall_seconds, int threads) 
   h5_->write("/timeseries/elastic", el_);
   h5_->write("/timeseries/pair_contacts", npair_);
   h5_->write("/timeseries/wall_contacts", nwall_);
+  write_escaped(w);
   if (const auto* f = w.fluid()) {
     const std::uint64_t r = f->regions().size();
     h5_->write("/timeseries/fluid_surface_z", surface_, {t_.size(), r});

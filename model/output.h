@@ -14,6 +14,11 @@
 //   /snapshots/NNNNNN/        one group per snapshot (attribute time_s):
 //       position (N x 3, m), velocity (N x 3, m/s), radius (N, m), id (N, int64), material (N, int32),
 //       angular_velocity (N x 3, rad/s; only with rotation)
+//   outflow: root attributes on_exit ("stop" | "remove"), escaped_count, escaped_mass (kg; 0 with "stop"),
+//                             max_escaped_fraction (with "remove"); /escaped/ one entry per particle
+//                             removed at the domain boundary, in order of removal (empty datasets if none):
+//       id (int64), time (s), mass (kg), radius (m), material (int32), position (E x 3, m, just outside
+//       the domain), velocity (E x 3, m/s, the half-step velocity then)
 //   /timeseries/              sampled every energy_interval: time (s), kinetic, rotational, potential,
 //                             elastic (J), pair_contacts, wall_contacts (int64)
 //   /profile/stage (strings), /profile/seconds (wall s per stage); attributes steps, rebuilds,
@@ -51,6 +56,7 @@ class RunOutput {
   std::string finish(const World& w, double wall_seconds, int threads);
 
  private:
+  void write_escaped(const World& w);
   std::unique_ptr<H5Writer> h5_;
   std::string h5_name_;
   bool rotation_ = false;

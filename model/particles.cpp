@@ -24,4 +24,38 @@ void Particles::add(int material_index, double radius_m, double density, const V
   }
 }
 
+namespace {
+
+// Keeps the entries whose new index is not kGone (new indices ascend with the old ones: in place).
+template <class T>
+void compact(std::vector<T>& v, const std::vector<std::uint32_t>& map) {
+  if (v.empty()) return;
+  std::size_t out = 0;
+  for (std::size_t a = 0; a < map.size(); ++a)
+    if (map[a] != Particles::kGone) v[out++] = v[a];
+  v.resize(out);
+}
+
+}  // namespace
+
+std::vector<std::uint32_t> Particles::remove_if(const std::vector<char>& gone) {
+  std::vector<std::uint32_t> map(size(), kGone);
+  std::uint32_t next = 0;
+  for (std::size_t a = 0; a < map.size(); ++a)
+    if (!gone[a]) map[a] = next++;
+  compact(id, map);
+  compact(material, map);
+  compact(radius, map);
+  compact(mass, map);
+  compact(inv_mass, map);
+  compact(x, map);
+  compact(v, map);
+  compact(f, map);
+  compact(omega, map);
+  compact(torque, map);
+  compact(inv_inertia, map);
+  compact(rolling_capacity, map);
+  return map;
+}
+
 }  // namespace pastemix::model

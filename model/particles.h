@@ -1,10 +1,11 @@
 // SPDX-License-Identifier: MIT
 // Particles: structure-of-arrays storage for spheres.
 //
-// One vector per quantity, indexed by a dense index. Particles are inserted before the run starts and are
-// never removed (a particle that leaves the domain stops the run with a RuntimeFailure), so the stable id
-// of a particle is its insertion order and equals its dense index; `id` is still stored so outputs and
-// contact-history keys never depend on that coincidence.
+// One vector per quantity, indexed by a dense index. Particles are inserted before the run starts; the id
+// of a particle is its insertion order. With [domain] on_exit = "stop" (the default) none is ever removed,
+// so id equals the dense index; with on_exit = "remove" a particle that leaves the domain is removed by
+// World (remove_if compacts every array, order kept), the later dense indices shift down and only `id`
+// still names the particle (outputs write it; contact histories are remapped by World, see world.cpp).
 //
 // Angular arrays (omega, torque, inv_inertia, rolling capacity) are allocated only when the Plan says a
 // law produces torque (`has_rotation`); with them absent the integrator skips rotation entirely.
@@ -42,6 +43,10 @@ struct Particles {
            const Vec3& angular_velocity);
   // Allocates the angular arrays (call once, after the Plan is known, before adding particles).
   void enable_rotation() { has_rotation = true; }
+  // Removes the particles with gone[a] != 0 from every array (rotation arrays included), keeping the order
+  // of the others; returns the old -> new dense index map (kGone for a removed particle).
+  static constexpr std::uint32_t kGone = 0xffffffffu;
+  std::vector<std::uint32_t> remove_if(const std::vector<char>& gone);
 };
 
 }  // namespace pastemix::model

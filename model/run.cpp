@@ -28,6 +28,14 @@ std::string format_profile(const Profile& p, long steps, double wall_seconds, st
   return out;
 }
 
+std::string RunSummary::escaped_line() const {
+  if (!outflow) return "";
+  return fmt::format("outflow: {} particle(s) left the domain and were removed, {:.6g} kg = {:.4g} % of the {:.6g} kg "
+                     "of particles (listed in /escaped)\n",
+                     escaped_count, escaped_mass, total_mass > 0 ? 100.0 * escaped_mass / total_mass : 0.0,
+                     total_mass);
+}
+
 RunSummary run_scene(const Scene& scene, const std::filesystem::path& out_dir, const RunOptions& opt) {
   using Clock = std::chrono::steady_clock;
   RunSummary r;
@@ -86,6 +94,11 @@ RunSummary run_scene(const Scene& scene, const std::filesystem::path& out_dir, c
   const std::string xmf = out.finish(world, r.wall_seconds, r.threads);
   staged.write_text(r.xmf, xmf);
   staged.commit();
+  r.outflow = scene.config.on_exit == ExitRule::remove;
+  r.escaped_count = world.escaped().size();
+  r.escaped_mass = world.escaped_mass();
+  r.total_mass = world.escaped_mass();
+  for (double m : world.particles().mass) r.total_mass += m;
   r.profile = world.profile();
   r.profile_table = format_profile(r.profile, r.steps, r.wall_seconds, world.particles().size());
   return r;

@@ -27,6 +27,12 @@ struct RunSummary {
   int threads = 1;
   Profile profile;
   std::string profile_table;   // the per-stage table printed at the end of `pastemix run`
+  // Outflow ([domain] on_exit = "remove"): particles removed at the domain boundary, their mass (kg) and
+  // the total particle mass (kg: those left at the end + the escaped).
+  bool outflow = false;
+  std::size_t escaped_count = 0;
+  double escaped_mass = 0.0, total_mass = 0.0;
+  std::string escaped_line() const;  // one line for `pastemix run` ("" without outflow)
 };
 
 // Output files are named after options.stem, else the scene file's stem. On a RuntimeFailure nothing is left behind.

@@ -257,6 +257,12 @@ Scene parse_scene(std::string_view text, const std::string& display_path) {
     const Vec3 &a = s.config.domain_min, &b = s.config.domain_max;
     if (!(b.x > a.x && b.y > a.y && b.z > a.z)) dom.fail("max", "max must exceed min on every axis");
   }
+  if (dom.choice_or("on_exit", {"stop", "remove"}, "stop") == "remove") {
+    s.config.on_exit = ExitRule::remove;
+    s.config.max_escaped_fraction = dom.number_or("max_escaped_fraction", 0.05, Range::fraction);
+  } else if (dom.has("max_escaped_fraction")) {
+    dom.fail("max_escaped_fraction", "only with on_exit = \"remove\" (a particle leaving the domain stops the run)");
+  }
   bool rotation_switch = true;
   if (auto ph = root.optional_table("physics")) {
     s.config.gravity = vec_or(*ph, "gravity", s.config.gravity);

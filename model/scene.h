@@ -5,9 +5,15 @@
 //   seed = 1                       # insertion RNG; recorded in the output
 //   time_step = 2e-6               # s
 //   end_time = 0.5                 # s
-//   [domain]                       # a particle outside this box stops the run (exit 3)
+//   [domain]                       # a particle outside this box stops the run (exit 3), or see on_exit
 //   min = [-0.2, -0.2, -0.05]      # m
 //   max = [0.2, 0.2, 0.6]
+//   on_exit = "stop"               # "stop" (default) | "remove": an outflow boundary; a particle that leaves
+//                                  # the box is removed and recorded (id, time, mass, radius, material,
+//                                  # position, velocity: /escaped in the result), the run goes on. NaN and
+//                                  # energy blow-ups still stop it.
+//   max_escaped_fraction = 0.05    # "remove" only: the run stops (exit 3) once more than this fraction of
+//                                  # the total particle mass has left (many escapes = a blow-up)
 //   [physics]                      # optional
 //   gravity = [0, 0, -9.81]        # m/s2 (default)
 //   rotation = true                # false: spheres do not rotate (no angular arrays)

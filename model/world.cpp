@@ -26,6 +26,15 @@
 // particles are replaced by the fluid kick (buoyancy + drag integrated stably, never reversing v). Timed
 // into the contact_forces stage (one thread, before the pair pass).
 //
+// Outflow (on_exit = "remove"): a drift that takes a particle out of the domain flags it, as it flags a NaN,
+// and the batch of passes stops at the step's barrier (advance() then handles it between passes: positions
+// at t, forces at t not yet computed). There, one thread: the health checks (NaN, energy: still fatal), the
+// escaped-mass limit, the record, then the particles are compacted (Particles::remove_if, order kept), the
+// pair list and wall candidates renamed through the old -> new index map (the pairs and candidates of the
+// removed particles dropped, every other history kept) and the lists rebuilt at once, carrying the
+// histories over as at any rebuild. All of it is serial and in ascending index order, so a removal gives the
+// same bits at any thread count; a run without an escape never enters it (the same bits as without outflow).
+//
 // No atomics and no reductions into shared sums: a particle's force is summed by its owner over its pairs
 // in ascending pair order, as with one thread, so the trajectory is bitwise identical for any thread
 // count (and for any batching of steps into advance()).
@@ -316,26 +325,83 @@ void World::advance(long n) {
   t_ += cfg_.dt;
   ++steps_;
   for (long left = n; left > 0;) {
-    if (bad_index_ >= 0) check();
+    if (bad_index_ >= 0) flagged(moved2);
     if (rebuild_due(moved2, t_)) {
       StageTimer timer{profile_.seconds[Profile::neighbor]};
       rebuild_neighbors();
     }
     left -= passes(left, h, false, moved2);
   }
-  if (bad_index_ >= 0) check();
+  if (bad_index_ >= 0) flagged(moved2);
 }
 
-void World::check() const {
+void World::flagged(double& moved2) {
+  if (cfg_.on_exit == ExitRule::stop) {
+    check();
+    return;
+  }
+  check_particles(false);  // NaN / inf and energy blow-ups stop the run whatever on_exit says
+  StageTimer timer{profile_.seconds[Profile::neighbor]};
+  remove_escaped(moved2);
+}
+
+namespace {
+
+bool outside(const Vec3& x, const Vec3& lo, const Vec3& hi) {
+  return !(x.x >= lo.x && x.x <= hi.x && x.y >= lo.y && x.y <= hi.y && x.z >= lo.z && x.z <= hi.z);
+}
+
+std::string left_domain(const Vec3& lo, const Vec3& hi) {
+  return fmt::format("left the domain [{:.4g}, {:.4g}] x [{:.4g}, {:.4g}] x [{:.4g}, {:.4g}] m", lo.x, hi.x, lo.y,
+                     hi.y, lo.z, hi.z);
+}
+
+}  // namespace
+
+void World::remove_escaped(double& moved2) {
   const std::size_t n = p_.size();
-  auto fail = [&](std::size_t a, const std::string& cause) {
-    const Vec3& x = p_.x[a];
-    const Vec3& v = p_.v[a];
-    throw RuntimeFailure(fmt::format(
-        "particle id {} at t = {:.6g} s (step {}): {}; position ({:.6g}, {:.6g}, {:.6g}) m, velocity "
-        "({:.6g}, {:.6g}, {:.6g}) m/s",
-        p_.id[a], t_, steps_, cause, x.x, x.y, x.z, v.x, v.y, v.z));
-  };
+  const Vec3 lo = cfg_.domain_min, hi = cfg_.domain_max;
+  std::vector<char> gone(n, 0);
+  double total = escaped_mass_, leaving = 0.0;  // kg: every particle ever in the world; those leaving now
+  std::size_t last = n;
+  for (std::size_t a = 0; a < n; ++a) {
+    total += p_.mass[a];
+    if (!outside(p_.x[a], lo, hi)) continue;
+    gone[a] = 1;
+    leaving += p_.mass[a];
+    last = a;
+  }
+  bad_index_ = -1;
+  if (last == n) return;  // nothing outside (a flag without a cause cannot happen: NaN was checked)
+  const double lost = escaped_mass_ + leaving;
+  if (lost > cfg_.max_escaped_fraction * total)
+    fail(last, fmt::format("{}; {:.6g} kg of particles have now left ({:.3g} % of {:.6g} kg), more than "
+                           "[domain] max_escaped_fraction = {:g}: many escapes are a blow-up, not a splash "
+                           "(time step too large for the stiffness?)",
+                           left_domain(lo, hi), lost, 100.0 * lost / total, total, cfg_.max_escaped_fraction));
+  for (std::size_t a = 0; a < n; ++a)
+    if (gone[a])
+      escaped_.push_back({p_.id[a], t_, p_.mass[a], p_.radius[a], p_.material[a], p_.x[a], p_.v[a]});
+  escaped_mass_ = lost;
+  const std::vector<std::uint32_t> map = p_.remove_if(gone);
+  pairs_.remove_particles(map, p_.size());
+  wall_contacts_.remove_particles(map);
+  if (fluid_) fluid_->particles_removed();
+  rebuild_neighbors();
+  moved2 = 0.0;
+}
+
+void World::fail(std::size_t a, const std::string& cause) const {
+  const Vec3& x = p_.x[a];
+  const Vec3& v = p_.v[a];
+  throw RuntimeFailure(fmt::format(
+      "particle id {} at t = {:.6g} s (step {}): {}; position ({:.6g}, {:.6g}, {:.6g}) m, velocity "
+      "({:.6g}, {:.6g}, {:.6g}) m/s",
+      p_.id[a], t_, steps_, cause, x.x, x.y, x.z, v.x, v.y, v.z));
+}
+
+void World::check_particles(bool domain) const {
+  const std::size_t n = p_.size();
   const Vec3 lo = cfg_.domain_min, hi = cfg_.domain_max;
   for (std::size_t a = 0; a < n; ++a) {
     const Vec3& x = p_.x[a];
@@ -343,9 +409,7 @@ void World::check() const {
     if (!std::isfinite(x.x + x.y + x.z + v.x + v.y + v.z)) fail(a, "non-finite position or velocity (NaN/inf)");
     if (p_.has_rotation && !std::isfinite(p_.omega[a].x + p_.omega[a].y + p_.omega[a].z))
       fail(a, "non-finite angular velocity");
-    if (!(x.x >= lo.x && x.x <= hi.x && x.y >= lo.y && x.y <= hi.y && x.z >= lo.z && x.z <= hi.z))
-      fail(a, fmt::format("left the domain [{:.4g}, {:.4g}] x [{:.4g}, {:.4g}] x [{:.4g}, {:.4g}] m", lo.x,
-                          hi.x, lo.y, hi.y, lo.z, hi.z));
+    if (domain && outside(x, lo, hi)) fail(a, left_domain(lo, hi));
   }
   if (cfg_.kinetic_limit > 0.0) {
     double ke = 0.0, ke_max = -1.0;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -38,14 +39,33 @@ struct Energies {
   long wall_contacts = 0;
 };
 
+// What a particle found outside the domain box does: stops the run with a RuntimeFailure (the default), or
+// is removed and recorded (an outflow boundary, as EDEM's and LIGGGHTS's deletion regions): a rock thrown
+// over the wall of an open-top box is a physical event, not a blow-up.
+enum class ExitRule { stop, remove };
+
 struct WorldConfig {
   double dt = 0.0;                 // s
   Vec3 gravity{0, 0, -9.81};       // m/s2
   double skin = 0.0;               // m, Verlet skin
-  Vec3 domain_min, domain_max;     // m, leaving this box stops the run
+  Vec3 domain_min, domain_max;     // m, leaving this box stops the run, or removes the particle (on_exit)
+  ExitRule on_exit = ExitRule::stop;
+  // on_exit = remove: once more than this fraction of the total particle mass (present + escaped) has
+  // left, the run stops anyway (many escapes are a blow-up, not a splash).
+  double max_escaped_fraction = 0.05;
   RollingLaw rolling = RollingLaw::none;
   // Kinetic energy above this (J) is a blow-up; set by the scene from the energy the particles can have.
   double kinetic_limit = 0.0;
+};
+
+// A particle removed at the domain boundary (on_exit = remove).
+struct Escape {
+  std::int64_t id = 0;
+  double time = 0.0;    // s, the time of the drift that took it out of the domain
+  double mass = 0.0;    // kg
+  double radius = 0.0;  // m
+  int material = 0;     // index into the scene's materials
+  Vec3 x, v;            // m, m/s: its position (just outside the domain) and half-step velocity then
 };
 
 class World {
@@ -60,8 +80,9 @@ class World {
   // drift of the next one are one per-particle pass (they touch only that particle).
   void advance(long n);
   // Throws RuntimeFailure (particle id, time, cause) if a particle is non-finite, outside the domain,
-  // or the kinetic energy exceeds the blow-up limit. Cheap: call every few steps.
-  void check() const;
+  // or the kinetic energy exceeds the blow-up limit. Cheap: call every few steps. (With on_exit = remove,
+  // advance() has already removed every particle that left the domain.)
+  void check() const { check_particles(true); }
   Energies energies() const;
 
   double time() const { return t_; }
@@ -82,8 +103,19 @@ class World {
   }
   const fluid::FluidField* fluid() const { return fluid_.get(); }
   const Profile& profile() const { return profile_; }
+  // Particles removed at the domain boundary (on_exit = remove), in the order of removal, and their mass.
+  const std::vector<Escape>& escaped() const { return escaped_; }
+  double escaped_mass() const { return escaped_mass_; }  // kg
 
  private:
+  void check_particles(bool domain) const;
+  [[noreturn]] void fail(std::size_t a, const std::string& cause) const;
+  // A drift flagged a particle (bad_index_): check() with on_exit = stop; with remove, the health checks
+  // and then remove_escaped(). moved2: the displacement since the last rebuild (reset by a removal).
+  void flagged(double& moved2);
+  // Removes and records the particles outside the domain, renames the contact histories through the index
+  // map and rebuilds the lists (RuntimeFailure past max_escaped_fraction).
+  void remove_escaped(double& moved2);
   void rebuild_neighbors();
   // What the per-particle pass after the forces does besides summing them.
   enum class Then { nothing, kick, kick_drift };
@@ -128,6 +160,8 @@ class World {
   // First problem found during a step (dense index, or -1) and its cause, reported by check().
   mutable long bad_index_ = -1;
   std::shared_ptr<fluid::FluidField> fluid_;  // fluid hook
+  std::vector<Escape> escaped_;
+  double escaped_mass_ = 0.0;  // kg
 };
 
 }  // namespace pastemix::model

@@ -81,6 +81,8 @@ void write_maps_h5(const std::filesystem::path& path, const MixingMap& m, const 
   h5.attribute("/accounting", "above_uncounted_kg", m.above_uncounted);
   h5.attribute("/accounting", "above_surface_kg", m.above_surface);
   h5.attribute("/accounting", "mixed_kg", m.mixed());
+  h5.attribute("/accounting", "escaped_kg", m.escaped);
+  h5.attribute("/accounting", "escaped_count", static_cast<std::int64_t>(r.escaped_count));
   h5.attribute("/accounting", "conservation_relative_error", m.conservation_error());
   h5.attribute("/accounting", "overfull_blocks", static_cast<std::int64_t>(m.overfull_blocks));
   h5.flush();
@@ -98,8 +100,12 @@ std::string maps_table(const MixingMap& m, const ResultSnapshot& r, const Mixing
                                                     : std::string("unknown: S not computed (give --K or --lab CASE)"));
   for (const auto& n : r.notes) o += "note: " + n + "\n";
   o += fmt::format("rock: poured {:.6f} kg = in blocks {:.6f} + below the grid {:.6f} + beside it {:.6f} + above "
-                   "the surface in no block {:.6f}; relative error {:.1e}\n",
-                   m.poured, m.in_blocks, m.below_grid, m.beside_grid, m.above_uncounted, m.conservation_error());
+                   "the surface in no block {:.6f} + escaped {:.6f}; relative error {:.1e}\n",
+                   m.poured, m.in_blocks, m.below_grid, m.beside_grid, m.above_uncounted, m.escaped,
+                   m.conservation_error());
+  o += fmt::format("escaped (left the simulation's domain, removed: outflow) {:.6f} kg = {:.3g} % of the poured mass, "
+                   "{} particle(s)\n",
+                   m.escaped, m.poured > 0 ? 100.0 * m.escaped / m.poured : 0.0, r.escaped_count);
   o += fmt::format("mixed (submerged) {:.6f} kg, unmixed (above the surface) {:.6f} kg; rock above the surface {}\n",
                    m.mixed(), m.unmixed(),
                    L.top_open ? "counts in the layer-1 block under it (as the lab cut it)" : "is in no block");

@@ -12,7 +12,8 @@
 //            paste_volume_m3, paste_dried_mass_kg, block_volume_m3}, /blocks/block_id (strings, flattened)
 //   /accounting attrs poured_kg, in_blocks_kg, below_grid_kg, beside_grid_kg, above_uncounted_kg (above the
 //          surface and in no block), above_surface_kg (unmixed),
-//          mixed_kg (submerged), conservation_relative_error, overfull_blocks
+//          mixed_kg (submerged), escaped_kg (left the simulation's domain: outflow), conservation_relative_error,
+//          overfull_blocks
 #pragma once
 
 #include <filesystem>

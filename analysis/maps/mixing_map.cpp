@@ -12,8 +12,8 @@ namespace pastemix::analysis {
 
 double MixingMap::conservation_error() const {
   if (!(poured > 0.0)) return 0.0;
-  const double grid = std::abs(poured - (in_blocks + below_grid + beside_grid + above_uncounted)) / poured;
-  const double surface = std::abs(poured - (submerged + above_surface)) / poured;
+  const double grid = std::abs(poured - (in_blocks + below_grid + beside_grid + above_uncounted + escaped)) / poured;
+  const double surface = std::abs(poured - (submerged + above_surface + escaped)) / poured;
   return std::max(grid, surface);
 }
 
@@ -37,7 +37,8 @@ MixingMap mixing_map(const MixingInputs& in, const ParticleView& particles) {
   m.S.assign(nb, 0.0);
   m.S_raw.assign(nb, 0.0);
   m.flag.assign(nb, 0);
-  m.poured = bm.total;
+  m.escaped = in.escaped_mass;
+  m.poured = bm.total + in.escaped_mass;
   m.in_blocks = bm.in_blocks;
   m.below_grid = bm.below_grid;
   m.beside_grid = bm.beside_grid;

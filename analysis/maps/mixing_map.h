@@ -10,6 +10,9 @@
 // counts in the layer-1 block under it, as the lab cut it (block_grid.h says why), else in no block. Rock
 // below the surface is MIXED (`submerged`): in a block, below the grid or beside it.
 //
+// Rock that left the simulation's domain (an outflow boundary, `escaped_mass`, read from the result's
+// /escaped) was poured but is in no block, neither mixed nor unmixed: it is a term of both balances.
+//
 // Assumes the grid's blocks lie inside the container, full of paste below the surface (the default grid
 // covers the chapter-3 box exactly; a box corner at the origin).
 #pragma once
@@ -32,6 +35,7 @@ struct MixingInputs {
   double K = nan;                // kg/m3, rho_wr / n_wr of eq. 3.8; NaN: S not computed (flag no_K)
   double rho_s = 2710.0;         // kg/m3, tailings particle density (thesis ch. 3)
   double e_f = 0.6;              // -, final void ratio of the dried paste (thesis ch. 3)
+  double escaped_mass = 0.0;     // kg, rock removed at the domain boundary before the snapshot (ResultSnapshot)
 };
 
 struct MixingMap {
@@ -41,10 +45,11 @@ struct MixingMap {
   std::vector<double> rock_volume_submerged;  // m3, the part of rock_volume below the surface
   std::vector<double> C, S, S_raw;     // fractions; S capped at 1, NaN where undefined
   std::vector<std::int32_t> flag;      // lab::SFlag
-  // Accounting, kg: poured = in_blocks + below_grid + beside_grid + above_uncounted, and, independently of
-  // the grid, poured = submerged (mixed) + above_surface (unmixed).
+  // Accounting, kg: poured = (rock in the snapshot) + escaped; poured = in_blocks + below_grid +
+  // beside_grid + above_uncounted + escaped, and, independently of the grid, poured = submerged (mixed) +
+  // above_surface (unmixed) + escaped (left the domain).
   double poured = 0.0, in_blocks = 0.0, below_grid = 0.0, beside_grid = 0.0, above_uncounted = 0.0;
-  double above_surface = 0.0, submerged = 0.0;
+  double above_surface = 0.0, submerged = 0.0, escaped = 0.0;
   double mixed() const { return submerged; }
   double unmixed() const { return above_surface; }
   double outside_grid() const { return below_grid + beside_grid + above_uncounted; }

@@ -123,6 +123,24 @@ ResultSnapshot read_result(const fs::path& path, const ResultOverrides& over) {
     r.density[p] = rho[static_cast<std::size_t>(mat[p])];
   }
 
+  // Outflow: rock removed at the domain boundary up to the snapshot (removed at time <= the snapshot's).
+  if (h5.exists("/escaped/mass")) {
+    const auto em = h5.read_doubles("/escaped/mass");
+    const auto et = h5.read_doubles("/escaped/time");
+    if (et.size() != em.size())
+      throw InputError(file, 0, "dataset '/escaped/time'",
+                       fmt::format("has {} values for {} in /escaped/mass", et.size(), em.size()));
+    for (std::size_t e = 0; e < em.size(); ++e) {
+      if (!(em[e] > 0.0) || !std::isfinite(em[e]) || !std::isfinite(et[e]))
+        throw InputError(file, 0, "dataset '/escaped/mass'",
+                         fmt::format("entry {}: mass must be positive and finite, got {} (time {})", e, em[e], et[e]));
+      if (std::isnan(r.time_s) || et[e] <= r.time_s) {
+        r.escaped_mass += em[e];
+        ++r.escaped_count;
+      }
+    }
+  }
+
   r.surface_z = fluid_property(h5, file, "fluid_surface_z", over.surface_z, "--surface-z", "m", r.notes);
   r.paste_density = fluid_property(h5, file, "fluid_density", over.paste_density, "--paste-density", "kg/m3", r.notes);
   r.solids_fraction =

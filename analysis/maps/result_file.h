@@ -5,6 +5,9 @@
 //   /snapshots/NNNNNN/{position (N x 3, m), radius (N, m), material (N)}   the chosen (default: last) snapshot
 //   /materials (M names), /material_density (M, kg/m3)                      rock density per material
 //   root attributes seed, scene_hash; fluid_surface_z (m), fluid_density (kg/m3), fluid_solids_fraction (-)
+//   /escaped/{time (s), mass (kg)}   particles removed at the domain boundary ([domain] on_exit = "remove"):
+//                                    those removed up to the snapshot's time are part of the poured mass
+//                                    (absent in older files and runs without outflow: no escapes)
 // The last three describe the paste at the end of the run (the surface has risen by the volume of rock that
 // entered it). A command-line override takes precedence over the file and is reported as the source; without
 // either, reading fails with an InputError that names the file and the missing attribute and the option.
@@ -46,6 +49,8 @@ struct ResultSnapshot {
   std::vector<std::array<double, 3>> position;  // m
   std::vector<double> radius;                   // m
   std::vector<double> density;                  // kg/m3 per particle (from its material)
+  double escaped_mass = 0.0;                    // kg, removed at the domain boundary up to time_s
+  std::size_t escaped_count = 0;
   Sourced surface_z, paste_density, solids_fraction;
   std::string density_source;
   std::vector<std::string> notes;  // what came from the command line instead of the file

@@ -60,6 +60,7 @@ Ensemble ensemble(const std::vector<MixingMap>& maps, double no_rock_below) {
   e.mixed = over([](const MixingMap& m) { return m.mixed(); });
   e.unmixed = over([](const MixingMap& m) { return m.unmixed(); });
   e.outside_grid = over([](const MixingMap& m) { return m.outside_grid(); });
+  e.escaped = over([](const MixingMap& m) { return m.escaped; });
   return e;
 }
 

@@ -23,7 +23,7 @@ struct Ensemble {
   std::vector<SClass> s_class;      // per block: the majority class (ties: the lower class)
   double no_rock_below = 0.0;       // kg, see kLabMassResolution
   std::vector<double> s_class_share;  // per block: share of realizations in that class
-  Summary poured, mixed, unmixed, outside_grid;  // kg
+  Summary poured, mixed, unmixed, outside_grid, escaped;  // kg (escaped: left the simulation's domain)
 };
 
 // The lab weighed block masses to 0.1 g (Table 3.2 prints kg to 4 decimals), so a block it reports without

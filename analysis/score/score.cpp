@@ -110,6 +110,7 @@ Score score_against_lab(const LabCase& lab, const std::vector<MixingMap>& maps, 
   s.mixed = e.mixed;
   s.unmixed = e.unmixed;
   s.outside_grid = e.outside_grid;
+  s.escaped = e.escaped;
   for (double x : g.M_wr) s.lab_recovered_rock += x;
   // Rock per layer and the deep share (layers 2..3 over all blocks), lab and per realization.
   s.lab_layer_rock.assign(lab::kLayers, 0.0);

@@ -64,7 +64,7 @@ struct Score {
   double no_rock_below = 0.0;  // kg: model blocks with less rock count as 'no rock' in the S classes
   double cone_221 = 0.0, cone_321 = 0.0, lab_cone_221 = 0.0, lab_cone_321 = 0.0;  // fractions
   bool model_cone = false, lab_cone = false;  // C >= 90 % in both M_221 and M_321
-  Summary poured, mixed, unmixed, outside_grid;  // kg
+  Summary poured, mixed, unmixed, outside_grid, escaped;  // kg (escaped: left the simulation's domain)
   double lab_recovered_rock = 0.0;               // kg, sum of the lab's M_wr over the 36 blocks
   std::vector<double> lab_layer_rock;            // kg per layer k = 1..3
   std::vector<Summary> model_layer_rock;         // kg per layer, over realizations

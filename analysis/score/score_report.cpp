@@ -87,8 +87,9 @@ std::string score_table(const Score& s) {
                    s.model_cone ? "yes" : "no", pct(s.cone_221), pct(s.cone_321), s.lab_cone ? "yes" : "no",
                    pct(s.lab_cone_221), pct(s.lab_cone_321), verdict);
   o += fmt::format("rock: poured {}; mixed (submerged) {}; unmixed (above the surface) {}; outside the grid's "
-                   "blocks {}; lab recovered {:.4f} kg in its 36 blocks\n",
-                   kg(s.poured, n), kg(s.mixed, n), kg(s.unmixed, n), kg(s.outside_grid, n), s.lab_recovered_rock);
+                   "blocks {}; escaped (left the simulation's domain) {}; lab recovered {:.4f} kg in its 36 blocks\n",
+                   kg(s.poured, n), kg(s.mixed, n), kg(s.unmixed, n), kg(s.outside_grid, n), kg(s.escaped, n),
+                   s.lab_recovered_rock);
   o += "rock per layer (kg, sum of 12 blocks):";
   for (std::size_t k = 0; k < s.lab_layer_rock.size(); ++k)
     o += fmt::format("  layer {}: lab {:.4f}, model {}", k + 1, s.lab_layer_rock[k],
@@ -145,7 +146,7 @@ std::string score_toml(const Score& s, const std::string& software, const std::s
                    "reproduced = {}  # both have it\n\n",
                    toml_number(100 * s.cone_221), toml_number(100 * s.cone_321), toml_number(100 * s.lab_cone_221),
                    toml_number(100 * s.lab_cone_321), s.model_cone, s.lab_cone, s.model_cone && s.lab_cone);
-  o += "[rock_mass_kg]  # ensemble mean and sd; mixed = submerged, unmixed = above the final surface\n";
+  o += "[rock_mass_kg]  # ensemble mean and sd; mixed = submerged, unmixed = above the final surface; escaped = left the simulation's domain (outflow)\n";
   o += fmt::format("above_surface_counted_in_layer_1 = {}\n", s.top_open);
   auto ms = [&](const char* name, const Summary& m) {
     o += fmt::format("{} = {}\n{}_sd = {}\n", name, toml_number(m.mean), name, toml_number(m.sd));
@@ -154,6 +155,7 @@ std::string score_toml(const Score& s, const std::string& software, const std::s
   ms("mixed", s.mixed);
   ms("unmixed", s.unmixed);
   ms("outside_grid", s.outside_grid);
+  ms("escaped", s.escaped);
   o += fmt::format("lab_recovered = {}\n", toml_number(s.lab_recovered_rock));
   {
     std::vector<std::string> lab, mean, sd;

@@ -29,6 +29,8 @@ struct ResultSpec {
   std::int64_t seed = 7;
   bool material_density = true, surface = true, paste = true;
   double surface_z = 0.10, paste_density = 1843.0, solids = 0.75;
+  // Spheres removed at the domain boundary (model/output.h /escaped): removal time (s) and mass (kg).
+  std::vector<std::array<double, 2>> escaped;
 };
 
 inline void write_result(const std::filesystem::path& path, const ResultSpec& s) {
@@ -68,6 +70,12 @@ inline void write_result(const std::filesystem::path& path, const ResultSpec& s)
     h5.attribute(g, "time_s", 0.5 * snap);
   }
   h5.write("/snapshots/time", std::vector<double>{0.0, 0.5});
+  if (!s.escaped.empty()) {
+    std::vector<double> t, m;
+    for (const auto& e : s.escaped) t.push_back(e[0]), m.push_back(e[1]);
+    h5.write("/escaped/time", t);
+    h5.write("/escaped/mass", m);
+  }
   h5.flush();
 }
 

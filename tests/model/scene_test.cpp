@@ -118,3 +118,33 @@ TEST_CASE("scene: `pastemix run` exits 2 with file:line on a bad scene and write
   CHECK(r.output.find("bad.toml:21: key 'velocty': unknown key") != std::string::npos);
   CHECK_FALSE(std::filesystem::exists(dir + "/bad.h5"));
 }
+
+TEST_CASE("scene: [domain] on_exit = stop by default, remove with max_escaped_fraction; bad values name file:line") {
+  const std::string sphere = "[[particle]]\nmaterial = \"rock\"\nradius = 0.01\nposition = [0, 0, 0]\n";
+  // Extra [domain] keys go on lines 6, 7, ... (after max on line 5).
+  auto with_domain = [&](const std::string& extra) {
+    std::string t = kBase;
+    t.insert(t.find("[contact]"), extra);
+    return t + sphere;
+  };
+  const Scene plain = model::test::scene_from(kBase + sphere);
+  CHECK(plain.config.on_exit == ExitRule::stop);
+  const Scene removing = model::test::scene_from(with_domain("on_exit = \"remove\"\n"));
+  CHECK(removing.config.on_exit == ExitRule::remove);
+  CHECK(removing.config.max_escaped_fraction == 0.05);
+  CHECK(model::test::scene_from(with_domain("on_exit = \"remove\"\nmax_escaped_fraction = 0.2\n"))
+            .config.max_escaped_fraction == 0.2);
+  CHECK(model::test::scene_from(with_domain("on_exit = \"stop\"\n")).config.on_exit == ExitRule::stop);
+  const std::string bad = error_of(with_domain("on_exit = \"sideways\"\n"));
+  MESSAGE("bad on_exit: " << bad);
+  CHECK(bad.find("bad.toml:6: key 'on_exit'") != std::string::npos);
+  CHECK(bad.find("remove") != std::string::npos);  // the error lists the choices
+  CHECK(error_of(with_domain("on_exit = 1\n")).find("bad.toml:6: key 'on_exit'") != std::string::npos);
+  CHECK(error_of(with_domain("on_exit = \"remove\"\nmax_escaped_fraction = 1.5\n"))
+            .find("bad.toml:7: key 'max_escaped_fraction'") != std::string::npos);
+  // Without "remove" the limit means nothing: an error, not a silently ignored key.
+  CHECK(error_of(with_domain("max_escaped_fraction = 0.1\n")).find("bad.toml:6: key 'max_escaped_fraction'") !=
+        std::string::npos);
+  CHECK(error_of(with_domain("on_exit = \"remove\"\nmax_escape = 0.1\n")).find("bad.toml:7: key 'max_escape': unknown key") !=
+        std::string::npos);
+}
