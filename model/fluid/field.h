@@ -74,7 +74,10 @@ class FluidField {
   void mark_stale() { stale_ = true; }
   // Particles were removed (World, on_exit = "remove"): every per-particle flag and list is anew at the
   // next update() (region_of_ no longer matches the particle count), the candidates refreshed.
-  void particles_removed() { region_of_.clear(), v_sub_.clear(), members_.clear(), candidates_.clear(), stale_ = true; }
+  void particles_removed() {
+    region_of_.clear(), v_sub_.clear(), members_.clear(), candidates_.clear(), stale_ = true;
+    factor_.clear(), factored_.clear();  // indices changed: the clusters are recomputed at the next update
+  }
   std::size_t candidate_count() const { return margin_ > 0.0 ? candidates_.size() : region_of_.size(); }
   // New velocity after a kick of length h (s) of particle a under the non-drag force F (N, gravity
   // included, buoyancy not: added here); g is the gravity vector (m/s2).
