@@ -7,6 +7,11 @@
 #            membership each step and pays nothing else;
 #   inside   a region holding every particle: buoyancy + drag kick for all. The fluid is air-like (Newtonian,
 #            1.2 kg/m3, 1.8e-5 Pa.s) so the bed's dynamics, hence its contact work, are the same as without it.
+#   paste    a Bingham paste (1843 kg/m3, 138 Pa, 0.7 Pa.s, curve 4.19) holding every particle: the settled bed
+#            stays at rest in it;
+#   cluster  the same paste with collective = "bearing_capacity" (model/fluid/collective.h): the whole bed is
+#            one cluster of 12,960 touching spheres, the worst case of the cluster pass (union-find over the
+#            pairs, shadowing, footprint), run every collective_interval = 5e-4 s = every 50 steps.
 # Prints the step-loop time (the profile's "total wall") and particle-steps/s per variant, and the ratios to
 # "none". Usage: bench/fluid_hook.sh [--steps 1000] [--repeats 3] [--threads 1]
 # PASTEMIX=/path/to/pastemix to use another build (default build/pastemix).
@@ -35,10 +40,17 @@ rheology = "newtonian"
 viscosity = 1.8e-5'
 { cat "$WORK/none.toml"; printf '\n[[fluid]]\nname = "above"\nx = [0, 0.165]\ny = [0, 0.2]\nbottom = 0.25\nsurface = 0.29\n%s\n' "$AIR"; } > "$WORK/outside.toml"
 { cat "$WORK/none.toml"; printf '\n[[fluid]]\nname = "all"\nx = [-0.005, 0.17]\ny = [-0.005, 0.205]\nbottom = -0.005\nsurface = 0.29\n%s\n' "$AIR"; } > "$WORK/inside.toml"
+PASTE='density = 1843
+rheology = "bingham"
+yield_stress = 138.0
+plastic_viscosity = 0.7
+curve = "published_4_19"'
+{ cat "$WORK/none.toml"; printf '\n[[fluid]]\nname = "all"\nx = [-0.005, 0.17]\ny = [-0.005, 0.205]\nbottom = -0.005\nsurface = 0.29\n%s\n' "$PASTE"; } > "$WORK/paste.toml"
+{ cat "$WORK/paste.toml"; printf 'collective = "bearing_capacity"\n'; } > "$WORK/cluster.toml"
 
 declare -A BEST BCPU
 for r in $(seq 1 "$REPEATS"); do
-  for v in none outside inside; do
+  for v in none outside inside paste cluster; do
     log="$WORK/$v.$r.log"
     OMP_NUM_THREADS="$THREADS" OMP_WAIT_POLICY=passive "$PY" "$BENCH/tools/cputime.py" "$log.cpu" -- "$PASTEMIX" run "$WORK/$v.toml" --threads "$THREADS" --quiet \
         --out "$WORK/out_$v" > "$log" 2>&1 || { cat "$log" >&2; exit 1; }
@@ -53,7 +65,7 @@ N=$(grep -c '^\[\[particle\]\]' "$WORK/none.toml")
 printf 'fluid hook cost: bench bed, %s spheres, %s steps, %s thread(s), best of %s (alternating runs)\n' "$N" "$STEPS" "$THREADS" "$REPEATS"
 printf '%-8s %10s %17s %16s %9s %13s %9s\n' variant "loop s" "ns/particle-step" "particle-steps/s" "vs none" \
     "process CPU s" "vs none"
-for v in none outside inside; do
+for v in none outside inside paste cluster; do
   awk -v v="$v" -v t="${BEST[$v]}" -v t0="${BEST[none]}" -v c="${BCPU[$v]}" -v c0="${BCPU[none]}" -v n="$N" \
       -v s="$STEPS" 'BEGIN {printf "%-8s %10.3f %17.1f %16.4g %9.4f %13.3f %9.4f\n", v, t, 1e9 * t / (n * s), n * s / t,
                             t / t0, c, c / c0}'

@@ -3,7 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <tuple>
+#include <utility>
 
 #include "model/fluid/buoyancy.h"
 
@@ -25,37 +25,58 @@ double disc_union_area(const std::vector<double>& cx, const std::vector<double>&
   if (!(span > 0.0)) return 0.0;
   const long rows = std::max(1L, std::min(4000L, static_cast<long>(std::ceil(span / h))));
   const double step = span / static_cast<double>(rows);
-  // (row, x0, x1) for every strip a disc crosses: the interval centred on the disc whose length is the
-  // disc's mean chord over the strip (its exact area in the strip / the strip's width). So a disc alone has
-  // its exact area; where two discs share a strip (overlapping, or one above the other within a strip's
-  // width) their intervals are merged, an error of order (h / r) of the shared strips' area.
-  std::vector<std::tuple<long, double, double>> iv;
+  // Per strip a disc crosses: the interval centred on the disc whose length is the disc's mean chord over
+  // the strip (its exact area in the strip / the strip's width). So a disc alone has its exact area; where
+  // two discs share a strip (overlapping, or one above the other within a strip's width) their intervals are
+  // merged, an error of order (h / r) of the shared strips' area. Intervals are bucketed by strip (counting
+  // sort), then sorted by start within each strip.
   auto primitive = [](double t, double r) {  // integral of 2 sqrt(r^2 - y^2) dy from 0 to t, |t| <= r
     return t * std::sqrt(std::max(0.0, r * r - t * t)) + r * r * std::asin(std::clamp(t / r, -1.0, 1.0));
   };
+  auto strips = [&](std::size_t k, long& lo, long& hi) {
+    lo = std::max(0L, static_cast<long>(std::floor((cy[k] - r[k] - y_lo) / step)));
+    hi = std::min(rows - 1, static_cast<long>(std::floor((cy[k] + r[k] - y_lo) / step)));
+  };
+  // Half the mean chord of disc k over strip `row`; false where the disc does not reach into the strip.
+  auto half_chord = [&](std::size_t k, long row, double& half) {
+    const double ya = std::max(y_lo + static_cast<double>(row) * step - cy[k], -r[k]);
+    const double yb = std::min(y_lo + static_cast<double>(row + 1) * step - cy[k], r[k]);
+    if (yb <= ya) return false;
+    half = 0.5 * (primitive(yb, r[k]) - primitive(ya, r[k])) / step;
+    return true;
+  };
+  std::vector<std::size_t> start(static_cast<std::size_t>(rows) + 1, 0);
+  double half = 0.0;
   for (std::size_t k = 0; k < n; ++k) {
     if (!(r[k] > 0.0)) continue;
-    const long k_lo = std::max(0L, static_cast<long>(std::floor((cy[k] - r[k] - y_lo) / step)));
-    const long k_hi = std::min(rows - 1, static_cast<long>(std::floor((cy[k] + r[k] - y_lo) / step)));
-    for (long row = k_lo; row <= k_hi; ++row) {
-      const double ya = std::max(y_lo + static_cast<double>(row) * step - cy[k], -r[k]);
-      const double yb = std::min(y_lo + static_cast<double>(row + 1) * step - cy[k], r[k]);
-      if (yb <= ya) continue;
-      const double half = 0.5 * (primitive(yb, r[k]) - primitive(ya, r[k])) / step;
-      iv.emplace_back(row, cx[k] - half, cx[k] + half);
-    }
+    long lo = 0, hi = 0;
+    strips(k, lo, hi);
+    for (long row = lo; row <= hi; ++row)
+      if (half_chord(k, row, half)) ++start[static_cast<std::size_t>(row) + 1];
   }
-  std::sort(iv.begin(), iv.end());
+  for (std::size_t i = 0; i < static_cast<std::size_t>(rows); ++i) start[i + 1] += start[i];
+  std::vector<std::pair<double, double>> iv(start.back(), {0.0, 0.0});
+  std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+  for (std::size_t k = 0; k < n; ++k) {
+    if (!(r[k] > 0.0)) continue;
+    long lo = 0, hi = 0;
+    strips(k, lo, hi);
+    for (long row = lo; row <= hi; ++row)
+      if (half_chord(k, row, half)) iv[fill[static_cast<std::size_t>(row)]++] = {cx[k] - half, cx[k] + half};
+  }
   double length = 0.0;
-  for (std::size_t s = 0; s < iv.size();) {
-    const long row = std::get<0>(iv[s]);
-    double a = std::get<1>(iv[s]), b = std::get<2>(iv[s]);
-    for (++s; s < iv.size() && std::get<0>(iv[s]) == row; ++s) {
-      if (std::get<1>(iv[s]) > b) {
+  for (std::size_t row = 0; row < static_cast<std::size_t>(rows); ++row) {
+    const auto first = iv.begin() + static_cast<std::ptrdiff_t>(start[row]);
+    const auto last = iv.begin() + static_cast<std::ptrdiff_t>(start[row + 1]);
+    if (first == last) continue;
+    std::sort(first, last);
+    double a = first->first, b = first->second;
+    for (auto it = first + 1; it != last; ++it) {
+      if (it->first > b) {
         length += b - a;
-        a = std::get<1>(iv[s]);
+        a = it->first;
       }
-      b = std::max(b, std::get<2>(iv[s]));
+      b = std::max(b, it->second);
     }
     length += b - a;
   }
