@@ -86,6 +86,28 @@ d_max = 5.0e-3
 fraction = 1.0
 )";
 
+// The scene run on 2 threads (every loop parallel), in batches of 400 steps, for `steps` steps.
+World two_threads_in_batches(const Scene& scene, long steps) {
+  const long saved = parallel_min_items;
+  parallel_min_items = 0;
+  omp_set_num_threads(2);
+  World two = make_world(scene);
+  for (long s = 0; s < steps; s += 400) two.advance(400);
+  omp_set_num_threads(omp_get_num_procs());
+  parallel_min_items = saved;
+  return two;
+}
+
+// Same positions and vertical velocities, bit for bit.
+bool same_state(const World& a, const World& b) {
+  const auto& p = a.particles();
+  const auto& r = b.particles();
+  bool same = p.size() == r.size();
+  for (std::size_t k = 0; same && k < p.size(); ++k)
+    same = p.x[k].x == r.x[k].x && p.x[k].y == r.x[k].y && p.x[k].z == r.x[k].z && p.v[k].z == r.v[k].z;
+  return same;
+}
+
 SphereRun paste_sphere() {
   SphereRun r;
   r.d = 0.01, r.rho_p = 2700, r.rho_f = 1500, r.eta = 0.1, r.tau_y = 5.0, r.curve = kBlend, r.dt = 1e-4;
@@ -401,11 +423,7 @@ TEST_CASE("fluid hook: the candidate list (particles near a region) gives the sa
     min_candidates = std::min(min_candidates, listed.fluid()->candidate_count());
   }
   const auto& p = listed.particles();
-  const auto& q = all.particles();
-  bool same = true;
-  for (std::size_t a = 0; a < p.size(); ++a)
-    same = same && p.x[a].x == q.x[a].x && p.x[a].y == q.x[a].y && p.x[a].z == q.x[a].z && p.v[a].z == q.v[a].z;
-  CHECK(same);
+  CHECK(same_state(listed, all));
   CHECK(listed.fluid()->surface_z(0) == all.fluid()->surface_z(0));
   CHECK(listed.fluid()->surface_z(0) > 0.03);  // rock entered and the surface rose
   CHECK(max_inside > 20);
@@ -414,18 +432,8 @@ TEST_CASE("fluid hook: the candidate list (particles near a region) gives the sa
 
   // The same run on 2 threads (slabs, ghosts, the fluid update inside the threads' region), in batches of
   // steps: the same bits.
-  const long saved = parallel_min_items;
-  parallel_min_items = 0;
-  omp_set_num_threads(2);
-  World two = make_world(scene);
-  for (int s = 0; s < 12000; s += 400) two.advance(400);
-  omp_set_num_threads(omp_get_num_procs());
-  parallel_min_items = saved;
-  const auto& r = two.particles();
-  bool same2 = true;
-  for (std::size_t a = 0; a < p.size(); ++a)
-    same2 = same2 && p.x[a].x == r.x[a].x && p.x[a].y == r.x[a].y && p.x[a].z == r.x[a].z && p.v[a].z == r.v[a].z;
-  CHECK(same2);
+  const World two = two_threads_in_batches(scene, 12000);
+  CHECK(same_state(listed, two));
   CHECK(two.fluid()->surface_z(0) == listed.fluid()->surface_z(0));
 }
 
@@ -447,17 +455,5 @@ TEST_CASE("fluid hook: with the collective yield rule, 2 threads in batches give
   INFO("most clusters " << most_clusters << ", smallest factor " << least_factor);
   CHECK(most_clusters > 0);  // the rule did act
   CHECK(least_factor < 1.0);
-  const long saved = parallel_min_items;
-  parallel_min_items = 0;
-  omp_set_num_threads(2);
-  World two = make_world(scene);
-  for (int s = 0; s < 12000; s += 400) two.advance(400);
-  omp_set_num_threads(omp_get_num_procs());
-  parallel_min_items = saved;
-  const auto& p = one.particles();
-  const auto& r = two.particles();
-  bool same = true;
-  for (std::size_t a = 0; a < p.size(); ++a)
-    same = same && p.x[a].x == r.x[a].x && p.x[a].y == r.x[a].y && p.x[a].z == r.x[a].z && p.v[a].z == r.v[a].z;
-  CHECK(same);
+  CHECK(same_state(one, two_threads_in_batches(scene, 12000)));
 }
