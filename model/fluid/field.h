@@ -17,6 +17,9 @@
 // solved as (m/phi) dv/dt = F/phi - D, the same kernel with a scaled mass and force. The half kick of the
 // Verlet step is thus stable for any dt, and the yield term cannot reverse the velocity (stick, no chatter).
 // No fluid torque is applied (the spin is untouched by the fluid: a stated simplification).
+// With collective = "bearing_capacity" the rest part D(0+) of a sphere in a cluster of touching submerged
+// spheres is multiplied by its cluster factor (collective.h: shadowing, footing capacity), recomputed every
+// collective_interval of simulated time in update(); the speed-dependent part stays the sphere's own.
 //
 // Cost outside the regions: with a candidate margin (World sets its Verlet skin), update() visits only the
 // candidates: particles whose sphere came within the margin of a region's box (bottom to surface) at the last
