@@ -10,7 +10,10 @@
 namespace pastemix::model::fluid {
 
 FluidField::FluidField(std::vector<FluidRegion> regions) : regions_(std::move(regions)) {
-  for (const FluidRegion& r : regions_) surface_.push_back(r.z_surface0);
+  for (const FluidRegion& r : regions_) {
+    surface_.push_back(r.z_surface0);
+    if (r.collective) cluster_interval_ = std::min(cluster_interval_, r.collective_interval);
+  }
 }
 
 namespace {
@@ -87,12 +90,9 @@ void FluidField::update(const Particles& p, const std::vector<std::uint32_t>* pa
     if (regions_[k].surface_rise) surface_[k] = regions_[k].z_surface0 + wet[k] / regions_[k].area();
 
   // Collective yield: the clusters every `every` steps (the smallest interval of the collective regions).
-  double interval = INFINITY;
-  for (const FluidRegion& r : regions_)
-    if (r.collective) interval = std::min(interval, r.collective_interval);
-  if (interval == INFINITY) return;
+  if (cluster_interval_ == INFINITY) return;
   if (factor_.size() != n) factor_.assign(n, 1.0), factored_.clear(), since_clusters_ = 0;
-  const long every = dt_ > 0.0 ? std::max(1L, std::lround(interval / dt_)) : 1L;
+  const long every = dt_ > 0.0 ? std::max(1L, std::lround(cluster_interval_ / dt_)) : 1L;
   if (since_clusters_ % every == 0) update_clusters(p, pair_i, pair_j);
   ++since_clusters_;
 }

@@ -33,6 +33,7 @@
 // surface moves by far less than a radius per step). z_s0 is the height of the fluid without any rock.
 #pragma once
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -112,6 +113,7 @@ class FluidField {
   // particles it was last set for, steps since the last cluster update.
   double dt_ = 0.0;
   Vec3 g_{0, 0, -9.81};
+  double cluster_interval_ = INFINITY;  // s: the smallest collective_interval of the regions (inf: none)
   std::vector<double> factor_;
   std::vector<long> factored_;
   long since_clusters_ = 0;

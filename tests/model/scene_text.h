@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "base/error.h"
 #include "model/scene.h"
 
 namespace pastemix::model::test {
@@ -21,6 +22,17 @@ inline std::string material(const std::string& name, double density, double E, d
 inline std::string interaction(const std::string& pair, double e, double mu, double mu_r = 0.0) {
   return "[[interaction]]\nmaterials = \"" + pair + "\"\nrestitution = " + std::to_string(e) +
          "\nfriction = " + std::to_string(mu) + "\nrolling_friction = " + std::to_string(mu_r) + "\n";
+}
+
+// Runs `steps` (any callable) and returns the RuntimeFailure's message it stopped with ("" if none).
+template <class Steps>
+std::string failure_of(Steps&& steps) {
+  try {
+    steps();
+  } catch (const RuntimeFailure& e) {
+    return e.what();
+  }
+  return "";
 }
 
 }  // namespace pastemix::model::test

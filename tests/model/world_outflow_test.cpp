@@ -206,12 +206,9 @@ TEST_CASE("outflow: more escaped mass than max_escaped_fraction stops the run wi
                            model::test::interaction("rock/rock", 0.5, 0.0) + sphere(0.005, "[0, 0, 0.01]") +
                            sphere(0.005, "[0.2, 0, 0.3]");
   World w = make_world(model::test::scene_from(fall));
-  std::string msg;
-  try {
+  std::string msg = model::test::failure_of([&] {
     for (int k = 0; k < 10000; ++k) w.step();
-  } catch (const RuntimeFailure& e) {
-    msg = e.what();
-  }
+  });
   MESSAGE(msg);
   CHECK(msg.find("particle id 0 at t = 0.11") != std::string::npos);  // z = 0.01 - g t^2 / 2 < -0.05 at t ~ 0.1106 s
   CHECK(msg.find("left the domain") != std::string::npos);
@@ -234,12 +231,7 @@ TEST_CASE("outflow: more escaped mass than max_escaped_fraction stops the run wi
   // NaN still stops the run under on_exit = remove (not a removal).
   World n = make_world(model::test::scene_from(fall));
   n.particles().v[1].x = std::nan("");
-  msg.clear();
-  try {
-    n.step();
-  } catch (const RuntimeFailure& e) {
-    msg = e.what();
-  }
+  msg = model::test::failure_of([&] { n.step(); });
   CHECK(msg.find("particle id 1") != std::string::npos);
   CHECK(msg.find("non-finite") != std::string::npos);
 }

@@ -216,12 +216,9 @@ TEST_CASE("diagnostics: a particle leaving the domain and a blow-up stop the run
                            model::test::interaction("rock/rock", 0.5, 0.0) +
                            "[[particle]]\nmaterial = \"rock\"\nradius = 0.005\nposition = [0, 0, 0.01]\n";
   World w = make_world(model::test::scene_from(fall));
-  std::string msg;
-  try {
+  std::string msg = model::test::failure_of([&] {
     for (int k = 0; k < 10000; ++k) w.step();
-  } catch (const RuntimeFailure& e) {
-    msg = e.what();
-  }
+  });
   CHECK(msg.find("particle id 0") != std::string::npos);
   CHECK(msg.find("left the domain") != std::string::npos);
 
@@ -231,15 +228,12 @@ TEST_CASE("diagnostics: a particle leaving the domain and a blow-up stop the run
                             "[[particle]]\nmaterial = \"steel\"\nradius = 0.01\nposition = [0, 0, 0.5]\nvelocity = [1, 0, 0]\n"
                             "[[particle]]\nmaterial = \"steel\"\nradius = 0.01\nposition = [0.0201, 0, 0.5]\n";
   World s = make_world(model::test::scene_from(stiff));
-  msg.clear();
-  try {
+  msg = model::test::failure_of([&] {
     for (int k = 0; k < 100; ++k) {
       s.step();
       s.check();
     }
-  } catch (const RuntimeFailure& e) {
-    msg = e.what();
-  }
+  });
   MESSAGE("blow-up diagnosis: " << msg);
   CHECK(msg.find("particle id") != std::string::npos);
   CHECK((msg.find("blow-up") != std::string::npos || msg.find("left the domain") != std::string::npos));
