@@ -65,10 +65,11 @@ struct StageTimer {
 
 }  // namespace
 
-World::World(WorldConfig config, std::vector<Material> materials, LawTable laws, Particles particles,
-             std::vector<Wall> walls, int history_width)
-    : cfg_(config), materials_(std::move(materials)), laws_(std::move(laws)), p_(std::move(particles)),
-      walls_(std::move(walls)) {
+World::World(WorldConfig config, std::vector<Material> materials, LawTable laws, RollingTable rolling,
+             Particles particles, std::vector<Wall> walls, int history_width)
+    : cfg_(config), materials_(std::move(materials)), laws_(std::move(laws)), rolling_(std::move(rolling)),
+      p_(std::move(particles)), walls_(std::move(walls)) {
+  kick_friction_ = std::visit([](const auto& r) { return LawOf<decltype(r)>::kick_friction; }, rolling_);
   pairs_.width = history_width;
   wall_contacts_.resize(p_.size(), static_cast<int>(walls_.size()), history_width);
 }
@@ -171,7 +172,7 @@ long World::passes(long n, double h, bool initial, double& moved2) {
   wall_state_.resize(static_cast<std::size_t>(threads));
   for (auto& r : results_) r.resize(static_cast<std::size_t>(threads));
   const bool rot = p_.has_rotation;
-  const bool roll = cfg_.rolling == RollingLaw::constant_torque;
+  const bool roll = kick_friction_;
   const bool has_walls = !walls_.empty();
   const int n_materials = static_cast<int>(materials_.size());
   long done = 0, drifts = 0;
@@ -180,8 +181,9 @@ long World::passes(long n, double h, bool initial, double& moved2) {
   int parity_end = pairs_.parity;
   double pair_s = 0.0, particle_s = 0.0, wait_s = 0.0;
   std::visit(
-      [&](const auto& table) {
-        using Law = typename std::decay_t<decltype(table)>::value_type::Law;
+      [&](const auto& table, const auto& rolling) {
+        using Law = LawOf<decltype(table)>;
+        using Roll = LawOf<decltype(rolling)>;
 #pragma omp parallel num_threads(threads)
         {
           const int me = omp_get_thread_num();
@@ -204,9 +206,9 @@ long World::passes(long n, double h, bool initial, double& moved2) {
               fluid_->update(p_, &pairs_.i, &pairs_.j);
             }
             ws.update(walls_, t);
-            const StepContext ctx{t, cfg_.dt, n_materials, cfg_.rolling};
+            const StepContext ctx{t, cfg_.dt, n_materials};
             const Then then = initial ? Then::nothing : (my_done + 1 < n ? Then::kick_drift : Then::kick);
-            pair_forces(laws_, ctx, p_, pairs_, me, cur);
+            pair_forces(laws_, rolling_, ctx, p_, pairs_, me, cur);
             const auto c1 = Clock::now();
             double d2 = 0.0;
             long bad = std::numeric_limits<long>::max();
@@ -222,7 +224,8 @@ long World::passes(long n, double h, bool initial, double& moved2) {
                   tq = p_.torque[a];
                   rc = p_.rolling_capacity[a];
                 }
-                wall_forces_one<Law>(table, ctx, walls_, ws, p_, wall_contacts_, static_cast<std::size_t>(a), f, tq, rc);
+                wall_forces_one<Law, Roll>(table, rolling, ctx, walls_, ws, p_, wall_contacts_,
+                                           static_cast<std::size_t>(a), f, tq, rc);
                 p_.f[a] = f;
                 if (rot) {
                   p_.torque[a] = tq;
@@ -273,7 +276,7 @@ long World::passes(long n, double h, bool initial, double& moved2) {
           }
         }
       },
-      laws_);
+      laws_, rolling_);
   pairs_.parity = parity_end;
   pairs_.sync_cross();
   t_ = t_end;
@@ -291,7 +294,7 @@ long World::passes(long n, double h, bool initial, double& moved2) {
 double World::kick_drift(double h) {
   const long n = static_cast<long>(p_.size());
   const bool rot = p_.has_rotation;
-  const bool roll = cfg_.rolling == RollingLaw::constant_torque;
+  const bool roll = kick_friction_;
   double max_d2 = 0.0;
   long bad = std::numeric_limits<long>::max();
   const bool parallel = n >= parallel_min_items && omp_get_max_threads() > 1;
@@ -439,27 +442,31 @@ Energies World::energies() const {
     e.potential -= p_.mass[a] * dot(cfg_.gravity, p_.x[a]);
   }
   const std::size_t nm = materials_.size();
-  auto estar = [&](int ma, int mb) {
-    return std::visit([&](const auto& table) { return table[ma * nm + mb].E_star; }, laws_);
-  };
-  for (std::size_t k = 0; k < pairs_.size(); ++k) {
-    const auto a = pairs_.i[k], b = pairs_.j[k];
-    const double rsum = p_.radius[a] + p_.radius[b];
-    const double d = rsum - norm(p_.x[b] - p_.x[a]);
-    if (d <= 0.0) continue;
-    ++e.pair_contacts;
-    const double rs = p_.radius[a] * p_.radius[b] / rsum;
-    e.elastic += 8.0 / 15.0 * estar(p_.material[a], p_.material[b]) * std::sqrt(rs) * std::pow(d, 2.5);
-  }
-  for (std::size_t a = 0; a < n; ++a)
-    for (const Wall& w : walls_) {
-      if (!w.active(t_)) continue;
-      Vec3 nn;
-      const double d = p_.radius[a] - wall_distance(w, w.displacement(t_), p_.x[a], &nn);
-      if (d <= 0.0) continue;
-      ++e.wall_contacts;
-      e.elastic += 8.0 / 15.0 * estar(p_.material[a], w.material) * std::sqrt(p_.radius[a]) * std::pow(d, 2.5);
-    }
+  // The contact law's normal-spring energy (its tangential spring excluded).
+  std::visit(
+      [&](const auto& table) {
+        using Law = LawOf<decltype(table)>;
+        auto pair_of = [&](int ma, int mb) -> const auto& { return table[static_cast<std::size_t>(ma) * nm + mb]; };
+        for (std::size_t k = 0; k < pairs_.size(); ++k) {
+          const auto a = pairs_.i[k], b = pairs_.j[k];
+          const double rsum = p_.radius[a] + p_.radius[b];
+          const double d = rsum - norm(p_.x[b] - p_.x[a]);
+          if (d <= 0.0) continue;
+          ++e.pair_contacts;
+          const double rs = p_.radius[a] * p_.radius[b] / rsum;
+          e.elastic += Law::elastic_energy(pair_of(p_.material[a], p_.material[b]), rs, d);
+        }
+        for (std::size_t a = 0; a < n; ++a)
+          for (const Wall& w : walls_) {
+            if (!w.active(t_)) continue;
+            Vec3 nn;
+            const double d = p_.radius[a] - wall_distance(w, w.displacement(t_), p_.x[a], &nn);
+            if (d <= 0.0) continue;
+            ++e.wall_contacts;
+            e.elastic += Law::elastic_energy(pair_of(p_.material[a], w.material), p_.radius[a], d);
+          }
+      },
+      laws_);
   return e;
 }
 

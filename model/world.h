@@ -34,7 +34,7 @@ struct Energies {
   double kinetic = 0.0;      // J, translational
   double rotational = 0.0;   // J
   double potential = 0.0;    // J, gravitational, relative to z = 0 (-m g.x)
-  double elastic = 0.0;      // J, Hertz normal springs (8/15 E* sqrt(R*) delta^2.5); tangential excluded
+  double elastic = 0.0;      // J, the contact law's normal springs (Law::elastic_energy); tangential excluded
   long pair_contacts = 0;
   long wall_contacts = 0;
 };
@@ -53,7 +53,6 @@ struct WorldConfig {
   // on_exit = remove: once more than this fraction of the total particle mass (present + escaped) has
   // left, the run stops anyway (many escapes are a blow-up, not a splash).
   double max_escaped_fraction = 0.05;
-  RollingLaw rolling = RollingLaw::none;
   // Kinetic energy above this (J) is a blow-up; set by the scene from the energy the particles can have.
   double kinetic_limit = 0.0;
 };
@@ -70,8 +69,8 @@ struct Escape {
 
 class World {
  public:
-  World(WorldConfig config, std::vector<Material> materials, LawTable laws, Particles particles,
-        std::vector<Wall> walls, int history_width);
+  World(WorldConfig config, std::vector<Material> materials, LawTable laws, RollingTable rolling,
+        Particles particles, std::vector<Wall> walls, int history_width);
 
   // Advances one step of velocity Verlet (the first call also evaluates the initial forces).
   void step() { advance(1); }
@@ -137,6 +136,8 @@ class World {
   WorldConfig cfg_;
   std::vector<Material> materials_;
   LawTable laws_;
+  RollingTable rolling_;
+  bool kick_friction_ = false;  // the rolling law acts as a friction on omega in the half kick
   Particles p_;
   std::vector<Wall> walls_;
   PairList pairs_;
