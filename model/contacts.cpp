@@ -74,13 +74,13 @@ void batch_chunk(const std::vector<typename Law::Params>& table, const std::vect
         p.f[a] += force;
         p.torque[a] += nxt * arm_a;
         if constexpr (Roll::kick_friction)
-          p.rolling_capacity[a] += Roll::capacity(rolling[L.law_index[k]], B.fn[e], arm_a);
+          p.rolling_capacity[a] += Roll::capacity(rolling[L.law_index[k]], B.fn[e], arm_a, B.r_star[e]);
       }
       if (own_b) {
         p.f[b] -= force;
         p.torque[b] += nxt * arm_b;
         if constexpr (Roll::kick_friction)
-          p.rolling_capacity[b] += Roll::capacity(rolling[L.law_index[k]], B.fn[e], arm_b);
+          p.rolling_capacity[b] += Roll::capacity(rolling[L.law_index[k]], B.fn[e], arm_b, B.r_star[e]);
       }
     }
   }
@@ -185,14 +185,14 @@ void pair_chunk(const std::vector<typename Law::Params>& table, const std::vecto
       p.f[a] += r.force_i;
       if (rot) {
         p.torque[a] += spring_roll ? nxt * arm_a + moment : nxt * arm_a;
-        if constexpr (constant_roll) p.rolling_capacity[a] += Roll::capacity(rp, r.normal_force, arm_a);
+        if constexpr (constant_roll) p.rolling_capacity[a] += Roll::capacity(rp, r.normal_force, arm_a, g.R_star);
       }
     }
     if (own_b) {
       p.f[b] -= r.force_i;
       if (rot) {
         p.torque[b] += spring_roll ? nxt * arm_b - moment : nxt * arm_b;
-        if constexpr (constant_roll) p.rolling_capacity[b] += Roll::capacity(rp, r.normal_force, arm_b);
+        if constexpr (constant_roll) p.rolling_capacity[b] += Roll::capacity(rp, r.normal_force, arm_b, g.R_star);
       }
     }
   }

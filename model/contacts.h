@@ -181,7 +181,7 @@ inline void wall_forces_one(const std::vector<typename Law::Params>& table,
         moment = Roll::moment(rolling[pair], {g.w_rel, r.normal_stiffness, r.normal_force, g.R_star, g.m_star, g.dt},
                               hist + Law::history_size);
       t += cross(g.n * arm, r.tangential_i) + moment;
-      if constexpr (Roll::kick_friction) roll += Roll::capacity(rolling[pair], r.normal_force, arm);
+      if constexpr (Roll::kick_friction) roll += Roll::capacity(rolling[pair], r.normal_force, arm, g.R_star);
     }
   }
 }

@@ -23,8 +23,11 @@
 //
 // Fluid hook (model/fluid/field.h, only with [[fluid]]): after the forces at t + dt, fluid->update() finds
 // the particles in a region and their submerged volumes (and raises the surface); the half kicks of those
-// particles are replaced by the fluid kick (buoyancy + drag integrated stably, never reversing v). Timed
-// into the contact_forces stage (one thread, before the pair pass).
+// particles are replaced by the fluid kick (buoyancy + drag integrated stably, never reversing v). The
+// update and these particles' kicks and drifts are the fluid pass, timed on its own profile line: each
+// thread skips its particles inside a region in the per-particle sweep and then kicks and drifts them, in
+// ascending order, from the field's member list (each particle's operations are its own, so the order of
+// the particles does not change a bit).
 //
 // Outflow (on_exit = "remove"): a drift that takes a particle out of the domain flags it, as it flags a NaN,
 // and the batch of passes stops at the step's barrier (advance() then handles it between passes: positions
@@ -179,7 +182,8 @@ long World::passes(long n, double h, bool initial, double& moved2) {
   double t_end = t_, d2_end = moved2;
   long bad_end = std::numeric_limits<long>::max();
   int parity_end = pairs_.parity;
-  double pair_s = 0.0, particle_s = 0.0, wait_s = 0.0;
+  double pair_s = 0.0, particle_s = 0.0, fluid_s = 0.0, wait_s = 0.0;
+  const bool wet = fluid_ != nullptr;
   std::visit(
       [&](const auto& table, const auto& rolling) {
         using Law = LawOf<decltype(table)>;
@@ -205,6 +209,7 @@ long World::passes(long n, double h, bool initial, double& moved2) {
 #pragma omp single
               fluid_->update(p_, &pairs_.i, &pairs_.j);
             }
+            const auto cf = Clock::now();
             ws.update(walls_, t);
             const StepContext ctx{t, cfg_.dt, n_materials};
             const Then then = initial ? Then::nothing : (my_done + 1 < n ? Then::kick_drift : Then::kick);
@@ -212,6 +217,18 @@ long World::passes(long n, double h, bool initial, double& moved2) {
             const auto c1 = Clock::now();
             double d2 = 0.0;
             long bad = std::numeric_limits<long>::max();
+            // The closing half kick (and the next opening half kick and drift) of particle a.
+            auto close_kick = [&](long a) {
+              if (then == Then::kick) {
+                kick_one(a, h, rot, roll);
+                return;
+              }
+              kick_twice(a, h, rot, roll);
+              drift_one(a, d2, bad);
+              // The state the other threads read in the next pass (cross pairs).
+              if (threads > 1 && pairs_.ghost_of[a] != PairList::kNone)
+                pairs_.ghost[cur ^ 1][pairs_.ghost_of[a]] = {p_.x[a], p_.v[a], rot ? p_.omega[a] : Vec3{}};
+            };
             // Per owned particle, in this order: pair forces (summed above), wall forces in wall order,
             // then the half kick (and the next opening half kick and drift): the same operations in the
             // same order as separate passes, one sweep of memory.
@@ -232,23 +249,20 @@ long World::passes(long n, double h, bool initial, double& moved2) {
                   p_.rolling_capacity[a] = rc;
                 }
               }
-              if (then == Then::nothing) continue;
-              if (then == Then::kick) {
-                kick_one(a, h, rot, roll);
-              } else {
-                kick_twice(a, h, rot, roll);
-                drift_one(a, d2, bad);
-                // The state the other threads read in the next pass (cross pairs).
-                if (threads > 1 && pairs_.ghost_of[a] != PairList::kNone)
-                  pairs_.ghost[cur ^ 1][pairs_.ghost_of[a]] = {p_.x[a], p_.v[a], rot ? p_.omega[a] : Vec3{}};
-              }
+              if (then == Then::nothing || (wet && fluid_->inside(a))) continue;  // fluid: below
+              close_kick(a);
             }
             const auto c2 = Clock::now();
+            if (wet && then != Then::nothing)
+              for (long a : fluid_->members())
+                if (threads == 1 || pairs_.owner[static_cast<std::size_t>(a)] == me) close_kick(a);
+            const auto c3 = Clock::now();
             ++my_done;
             cur ^= 1;  // the cross pairs' history just written
             if (master) {
-              pair_s += std::chrono::duration<double>(c1 - c0).count();
+              pair_s += std::chrono::duration<double>(c1 - cf).count();
               particle_s += std::chrono::duration<double>(c2 - c1).count();
+              fluid_s += std::chrono::duration<double>(cf - c0).count() + std::chrono::duration<double>(c3 - c2).count();
             }
             if (then != Then::kick_drift) break;  // the end of the region is the barrier
             // The next step has begun: its positions are needed by every thread, and its displacement and
@@ -285,6 +299,7 @@ long World::passes(long n, double h, bool initial, double& moved2) {
   if (bad_end != std::numeric_limits<long>::max() && bad_index_ < 0) bad_index_ = bad_end;
   profile_.seconds[Profile::contact_forces] += pair_s;
   profile_.seconds[Profile::walls_kick] += particle_s;
+  profile_.seconds[Profile::fluid] += fluid_s;
   profile_.seconds[Profile::wait] += wait_s;
   return done;
 }

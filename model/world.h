@@ -19,13 +19,14 @@ namespace pastemix::model {
 
 // Wall-clock seconds spent per stage, as seen by thread 0 (the order is the order of the step):
 // kick_drift = the first half kick and drift of a batch of steps (World::advance; the later ones are fused
-// into walls_kick); neighbor = list rebuilds; contact_forces = the pair pass (and the fluid update before
-// it); walls_kick = the per-particle pass (wall forces, closing half kick, next opening half kick and
-// drift); wait = thread 0 waiting at the step's barrier for the other threads.
+// into walls_kick); neighbor = list rebuilds; contact_forces = the pair pass; walls_kick = the per-particle
+// pass (wall forces, closing half kick, next opening half kick and drift) of the particles outside every
+// fluid region; fluid = the fluid pass (the field's update, then the fluid kicks and drifts of the particles
+// inside a region); wait = thread 0 waiting at the step's barrier for the other threads.
 struct Profile {
-  enum Stage { kick_drift, neighbor, contact_forces, walls_kick, wait, output, count };
-  static constexpr std::array<const char*, count> names{"kick_drift", "neighbor", "contact_forces",
-                                                        "walls_kick", "wait", "output"};
+  enum Stage { kick_drift, neighbor, contact_forces, walls_kick, fluid, wait, output, count };
+  static constexpr std::array<const char*, count> names{"kick_drift", "neighbor", "contact_forces", "walls_kick",
+                                                        "fluid",      "wait",     "output"};
   std::array<double, count> seconds{};
   long rebuilds = 0;
 };

@@ -23,8 +23,8 @@ struct ConstantTorque {
 
   static Params from_params(const pastemix::Params&, const MaterialPair& pair) { return {pair.rolling_friction}; }
 
-  // N.m: this contact's share mu_r F_n R_i of the particle's rolling friction.
-  static double capacity(const Params& p, double normal_force, double arm) {
+  // N.m: this contact's share mu_r F_n R_i of the particle's rolling friction (arm = R_i; R* unused).
+  static double capacity(const Params& p, double normal_force, double arm, double /*R_star*/) {
     return p.rolling_friction * normal_force * arm;
   }
 };

@@ -10,7 +10,8 @@
 //   needs_rotation        whether it needs angular arrays (a law that does nothing does not)
 //   kick_friction         true: the law is a non-reversing friction on omega applied in the half kick (the
 //                         engine sums capacity() per particle); false: it returns a contact moment
-//   capacity(prm, F_n, arm)            N.m, the particle's share of the friction (kick_friction laws)
+//   capacity(prm, F_n, arm, R*)        N.m, the particle's share of the friction (kick_friction laws); arm
+//                                      = its centre-to-contact distance, R* the pair's equivalent radius
 //   moment(prm, RollingInput, history) N.m, the moment on i, j gets the opposite (history_size > 0 laws)
 #pragma once
 
