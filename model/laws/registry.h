@@ -13,6 +13,7 @@
 #include <concepts>
 
 #include "model/laws/constant_torque.h"
+#include "model/laws/constant_torque_rstar.h"
 #include "model/laws/elastic_plastic.h"
 #include "model/laws/hertz_mindlin.h"
 #include "model/laws/law_list.h"
@@ -36,7 +37,7 @@ template <RollingLaw... Laws>
 using RollingLawList = LawList<Laws...>;
 
 using ContactLaws = ContactLawList<HertzMindlin>;
-using RollingLaws = RollingLawList<NoRolling, ConstantTorque, ElasticPlastic>;
+using RollingLaws = RollingLawList<NoRolling, ConstantTorque, ElasticPlastic, ConstantTorqueRstar>;
 
 using LawTable = ContactLaws::Table;
 using RollingTable = RollingLaws::Table;
