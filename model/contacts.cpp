@@ -22,15 +22,14 @@ constexpr long kChunk = 256;
 // ([lo, hi)) in ascending pair order. Part: a cross pair (both threads compute it) reads its history from
 // cross_hist[cur]; the owner of i writes the new one into cross_hist[1 - cur] and its touching flag, the
 // other thread works on a private copy.
-// The dense part of pair_chunk for a law with a batch kernel (Hertz-Mindlin with a tangential spring,
-// rotation, no rolling spring): the touching pairs idx[0 .. m) staged kBatch at a time into lanes, computed
+// The dense part of pair_chunk for a law with a batch kernel (with its tangential spring, rotation, no
+// rolling spring): the touching pairs idx[0 .. m) staged kBatch at a time into lanes, computed
 // by Law::force_batch (the same bits as Law::force, several contacts per instruction), then added to the
 // owned particles in ascending pair order, as the scalar loop does.
-template <class Law, bool Part>
-void batch_chunk(const std::vector<typename Law::Params>& table, const StepContext& ctx, Particles& p, PairList& L,
-                 const std::uint32_t* idx, const Vec3* sep, const double* sep2, const double* rsums, long m, int me,
-                 int cur) {
-  const bool constant_roll = ctx.rolling == RollingLaw::constant_torque;
+template <class Law, class Roll, bool Part>
+void batch_chunk(const std::vector<typename Law::Params>& table, const std::vector<typename Roll::Params>& rolling,
+                 const StepContext& ctx, Particles& p, PairList& L, const std::uint32_t* idx, const Vec3* sep,
+                 const double* sep2, const double* rsums, long m, int me, int cur) {
   typename Law::Batch B;
   for (long q0 = 0; q0 < m; q0 += Law::kBatch) {
     const int nb = static_cast<int>(std::min<long>(Law::kBatch, m - q0));
@@ -43,9 +42,7 @@ void batch_chunk(const std::vector<typename Law::Params>& table, const StepConte
       B.rsum[e] = rsums[q];
       B.ra[e] = p.radius[a], B.rb[e] = p.radius[b];
       B.r_star[e] = L.r_star[k], B.m_star[e] = L.m_star[k];
-      const auto& prm = table[L.law_index[k]];
-      B.E_star[e] = prm.E_star, B.G_star[e] = prm.G_star, B.damping[e] = prm.damping;
-      B.sqrt_st_over_sn[e] = prm.sqrt_st_over_sn, B.friction[e] = prm.friction;
+      Law::load_params(B, e, table[L.law_index[k]]);
       const bool cross_pair = Part && L.cross[k] != PairList::kNone;
       Vec3 va, vb, wa, wb;
       const double* h;
@@ -73,30 +70,32 @@ void batch_chunk(const std::vector<typename Law::Params>& table, const StepConte
       if (h) h[0] = B.hx[e], h[1] = B.hy[e], h[2] = B.hz[e];
       const Vec3 force{B.fx[e], B.fy[e], B.fz[e]}, nxt{B.tx[e], B.ty[e], B.tz[e]};
       const double arm_a = B.arm_a[e], arm_b = B.arm_b[e];
-      const double mu_r = table[L.law_index[k]].rolling_friction;
       if (own_a) {
         p.f[a] += force;
         p.torque[a] += nxt * arm_a;
-        if (constant_roll) p.rolling_capacity[a] += mu_r * B.fn[e] * arm_a;
+        if constexpr (Roll::kick_friction)
+          p.rolling_capacity[a] += Roll::capacity(rolling[L.law_index[k]], B.fn[e], arm_a, B.r_star[e]);
       }
       if (own_b) {
         p.f[b] -= force;
         p.torque[b] += nxt * arm_b;
-        if (constant_roll) p.rolling_capacity[b] += mu_r * B.fn[e] * arm_b;
+        if constexpr (Roll::kick_friction)
+          p.rolling_capacity[b] += Roll::capacity(rolling[L.law_index[k]], B.fn[e], arm_b, B.r_star[e]);
       }
     }
   }
 }
 
-template <class Law, bool Part>
-void pair_chunk(const std::vector<typename Law::Params>& table, const StepContext& ctx, Particles& p, PairList& L,
-                const std::uint32_t* ks, long q0, long q1, int me, int cur) {
+template <class Law, class Roll, bool Part>
+void pair_chunk(const std::vector<typename Law::Params>& table, const std::vector<typename Roll::Params>& rolling,
+                const StepContext& ctx, Particles& p, PairList& L, const std::uint32_t* ks, long q0, long q1, int me,
+                int cur) {
   const bool rot = p.has_rotation;
-  const bool constant_roll = ctx.rolling == RollingLaw::constant_torque;
-  // Only the elastic-plastic law reads the relative rotation and returns a rolling torque. Without it the
+  constexpr bool constant_roll = Roll::kick_friction;
+  // Only a rolling law with a contact moment (a spring) reads the relative rotation. Without one the
   // torque terms skip "+ 0": x + (+0) differs from x only for x = -0, and a torque sum that starts at +0
   // never becomes -0 (round to nearest), so adding -0 or +0 to it gives the same bits.
-  const bool spring_roll = ctx.rolling == RollingLaw::elastic_plastic;
+  constexpr bool spring_roll = Roll::history_size > 0;
   const int w = L.width;
   const std::size_t ws = static_cast<std::size_t>(w);
   std::uint32_t idx[kChunk];
@@ -131,12 +130,12 @@ void pair_chunk(const std::vector<typename Law::Params>& table, const StepContex
     }
   }
   if constexpr (requires { Law::force_batch; }) {
-    if (w == 3 && rot && !spring_roll) {
-      batch_chunk<Law, Part>(table, ctx, p, L, idx, sep, sep2, rsums, m, me, cur);
+    if (w == Law::history_size && rot && !spring_roll) {
+      batch_chunk<Law, Roll, Part>(table, rolling, ctx, p, L, idx, sep, sep2, rsums, m, me, cur);
       return;
     }
   }
-  double scratch[HertzMindlin::history_size];
+  double scratch[kMaxHistory];
   for (long q = 0; q < m; ++q) {
     const std::uint32_t k = idx[q];
     const std::uint32_t a = L.i[k], b = L.j[k];
@@ -176,27 +175,32 @@ void pair_chunk(const std::vector<typename Law::Params>& table, const StepContex
     g.dt = ctx.dt;
     const auto& prm = table[L.law_index[k]];
     const auto r = Law::force(prm, g, hist, w);
+    const auto& rp = rolling[L.law_index[k]];
+    Vec3 moment;  // N.m on a, the opposite on b
+    if constexpr (spring_roll)
+      moment = Roll::moment(rp, {g.w_rel, r.normal_stiffness, r.normal_force, g.R_star, g.m_star, g.dt},
+                            hist + Law::history_size);
     const Vec3 nxt = rot ? cross(g.n, r.tangential_i) : Vec3{};  // (arm n) x F_t = arm (n x F_t)
     if (own_a) {
       p.f[a] += r.force_i;
       if (rot) {
-        p.torque[a] += spring_roll ? nxt * arm_a + r.rolling_torque_i : nxt * arm_a;
-        if (constant_roll) p.rolling_capacity[a] += prm.rolling_friction * r.normal_force * arm_a;
+        p.torque[a] += spring_roll ? nxt * arm_a + moment : nxt * arm_a;
+        if constexpr (constant_roll) p.rolling_capacity[a] += Roll::capacity(rp, r.normal_force, arm_a, g.R_star);
       }
     }
     if (own_b) {
       p.f[b] -= r.force_i;
       if (rot) {
-        p.torque[b] += spring_roll ? nxt * arm_b - r.rolling_torque_i : nxt * arm_b;
-        if (constant_roll) p.rolling_capacity[b] += prm.rolling_friction * r.normal_force * arm_b;
+        p.torque[b] += spring_roll ? nxt * arm_b - moment : nxt * arm_b;
+        if constexpr (constant_roll) p.rolling_capacity[b] += Roll::capacity(rp, r.normal_force, arm_b, g.R_star);
       }
     }
   }
 }
 
-template <class Law>
-void pair_pass(const std::vector<typename Law::Params>& table, const StepContext& ctx, Particles& p, PairList& L,
-               int thread, int parity) {
+template <class Law, class Roll>
+void pair_pass(const std::vector<typename Law::Params>& table, const std::vector<typename Roll::Params>& rolling,
+               const StepContext& ctx, Particles& p, PairList& L, int thread, int parity) {
   const bool part = L.threads > 1;
   if (part) {
     for (std::uint32_t a : L.own[thread]) {
@@ -217,11 +221,11 @@ void pair_pass(const std::vector<typename Law::Params>& table, const StepContext
     const auto& ks = L.mine[thread];
     const long n = static_cast<long>(ks.size());
     for (long q = 0; q < n; q += kChunk)
-      pair_chunk<Law, true>(table, ctx, p, L, ks.data(), q, std::min(n, q + kChunk), thread, parity);
+      pair_chunk<Law, Roll, true>(table, rolling, ctx, p, L, ks.data(), q, std::min(n, q + kChunk), thread, parity);
   } else {
     const long n = static_cast<long>(L.size());
     for (long q = 0; q < n; q += kChunk)
-      pair_chunk<Law, false>(table, ctx, p, L, nullptr, q, std::min(n, q + kChunk), 0, 0);
+      pair_chunk<Law, Roll, false>(table, rolling, ctx, p, L, nullptr, q, std::min(n, q + kChunk), 0, 0);
   }
 }
 
@@ -499,13 +503,13 @@ void PairList::sync_cross() {
     std::copy_n(&cross_hist[parity][c * ws], ws, &history[cross_pairs[c] * ws]);
 }
 
-void pair_forces(const LawTable& laws, const StepContext& ctx, Particles& p, PairList& pairs, int thread, int parity) {
+void pair_forces(const LawTable& laws, const RollingTable& rolling, const StepContext& ctx, Particles& p,
+                 PairList& pairs, int thread, int parity) {
   std::visit(
-      [&](const auto& table) {
-        using Params = typename std::decay_t<decltype(table)>::value_type;
-        pair_pass<typename Params::Law>(table, ctx, p, pairs, thread, parity);
+      [&](const auto& table, const auto& roll) {
+        pair_pass<LawOf<decltype(table)>, LawOf<decltype(roll)>>(table, roll, ctx, p, pairs, thread, parity);
       },
-      laws);
+      laws, rolling);
 }
 
 void WallState::update(const std::vector<Wall>& walls, double t) {

@@ -23,7 +23,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "model/laws/contact_law.h"
+#include "model/laws/registry.h"
 #include "model/neighbor.h"
 #include "model/particles.h"
 #include "model/walls.h"
@@ -119,14 +119,14 @@ struct StepContext {
   double t = 0.0;    // s, time at which forces are evaluated
   double dt = 0.0;   // s
   int n_materials = 0;
-  RollingLaw rolling = RollingLaw::none;
 };
 
 // Pair forces of thread `thread`'s particles (pairs.partition() done for pairs.threads threads; all of
 // them with one thread): their force, torque and rolling capacity are overwritten with the sums over their
 // pairs in ascending pair order. Cross pairs read the history from cross_hist[parity] and write
-// cross_hist[1 - parity]. The law is chosen once here with std::visit.
-void pair_forces(const LawTable& laws, const StepContext& ctx, Particles& p, PairList& pairs, int thread, int parity);
+// cross_hist[1 - parity]. The laws are chosen once here with std::visit.
+void pair_forces(const LawTable& laws, const RollingTable& rolling, const StepContext& ctx, Particles& p,
+                 PairList& pairs, int thread, int parity);
 
 // The walls at the time the forces are evaluated, computed once per step.
 struct WallState {
@@ -137,12 +137,12 @@ struct WallState {
 
 // Wall forces of particle a added to f / t / roll, its candidate walls in wall order. Inline: the World
 // calls it inside its fused per-particle pass (forces, then the kick), one loop over the particles.
-template <class Law>
-inline void wall_forces_one(const std::vector<typename Law::Params>& table, const StepContext& ctx,
+template <class Law, class Roll>
+inline void wall_forces_one(const std::vector<typename Law::Params>& table,
+                            const std::vector<typename Roll::Params>& rolling, const StepContext& ctx,
                             const std::vector<Wall>& walls, const WallState& ws, const Particles& p,
                             WallContacts& wc, std::size_t a, Vec3& f, Vec3& t, double& roll) {
   const bool rot = p.has_rotation;
-  const bool constant_roll = ctx.rolling == RollingLaw::constant_torque;
   const int w = wc.width;
   for (std::uint32_t c = wc.start[a]; c < wc.start[a + 1]; ++c) {
     const int k = wc.near[c];
@@ -172,12 +172,16 @@ inline void wall_forces_one(const std::vector<typename Law::Params>& table, cons
     }
     g.arm_i = arm;
     g.dt = ctx.dt;
-    const auto& prm = table[static_cast<std::size_t>(p.material[a] * ctx.n_materials + walls[k].material)];
-    const auto r = Law::force(prm, g, hist, w);
+    const std::size_t pair = static_cast<std::size_t>(p.material[a] * ctx.n_materials + walls[k].material);
+    const auto r = Law::force(table[pair], g, hist, w);
     f += r.force_i;
     if (rot) {
-      t += cross(g.n * arm, r.tangential_i) + r.rolling_torque_i;
-      if (constant_roll) roll += prm.rolling_friction * r.normal_force * arm;
+      Vec3 moment;  // N.m; +0 without a moment law (the sum's bits as before the laws were split)
+      if constexpr (Roll::history_size > 0)
+        moment = Roll::moment(rolling[pair], {g.w_rel, r.normal_stiffness, r.normal_force, g.R_star, g.m_star, g.dt},
+                              hist + Law::history_size);
+      t += cross(g.n * arm, r.tangential_i) + moment;
+      if constexpr (Roll::kick_friction) roll += Roll::capacity(rolling[pair], r.normal_force, arm, g.R_star);
     }
   }
 }

@@ -23,12 +23,4 @@ struct MaterialPair {
   double rolling_friction = 0.0;  // -, rolling coefficient mu_r (its meaning belongs to the rolling law)
 };
 
-enum class RollingLaw {
-  none,
-  // EDEM "standard": tau_i = -mu_r F_n R_i omega_i/|omega_i|, applied as a non-reversing friction on omega.
-  constant_torque,
-  // Elastic-plastic spring-dashpot (Ai et al. 2011): k_r = 2.25 k_n mu_r^2 R*^2, |M| <= mu_r R* F_n.
-  elastic_plastic,
-};
-
 }  // namespace pastemix::model

@@ -19,15 +19,6 @@ std::string scene_hash(const std::string& text) {
 
 namespace {
 
-const char* rolling_name(RollingLaw r) {
-  switch (r) {
-    case RollingLaw::none: return "none";
-    case RollingLaw::constant_torque: return "constant_torque";
-    case RollingLaw::elastic_plastic: return "elastic_plastic";
-  }
-  return "?";
-}
-
 std::vector<double> flat(const std::vector<Vec3>& v) {
   std::vector<double> out(3 * v.size());
   for (std::size_t k = 0; k < v.size(); ++k) {
@@ -50,7 +41,7 @@ RunOutput::RunOutput(const std::filesystem::path& h5_path, std::string h5_final_
   h5_->attribute("/", "scene_hash", scene_hash(scene.text));
   h5_->attribute("/", "seed", static_cast<std::int64_t>(scene.seed));
   h5_->attribute("/", "law", scene.plan.law);
-  h5_->attribute("/", "rolling", rolling_name(scene.config.rolling));
+  h5_->attribute("/", "rolling", scene.plan.rolling);
   h5_->attribute("/", "time_step_s", scene.config.dt);
   h5_->attribute("/", "end_time_s", scene.end_time);
   h5_->attribute("/", "particle_count", static_cast<std::int64_t>(scene.particles.size()));

@@ -272,12 +272,8 @@ Scene parse_scene(std::string_view text, const std::string& display_path) {
   s.plan.fluid = !s.fluid.empty();
 
   const Params contact = root.table("contact");
-  s.plan.law = contact.choice("law", contact_law_names());
-  const std::string rolling = contact.choice_or("rolling", {"none", "constant_torque", "elastic_plastic"}, "none");
-  s.config.rolling = rolling == "constant_torque"   ? RollingLaw::constant_torque
-                     : rolling == "elastic_plastic" ? RollingLaw::elastic_plastic
-                                                    : RollingLaw::none;
-  const double rolling_damping = contact.number_or("rolling_damping", 0.3, Range::non_negative);
+  s.plan.law = contact.choice("law", ContactLaws::names());
+  s.plan.rolling = contact.choice_or("rolling", RollingLaws::names(), "none");
 
   // Materials and interactions.
   std::vector<int> material_line;
@@ -361,29 +357,30 @@ Scene parse_scene(std::string_view text, const std::string& display_path) {
   for (const Wall& w : s.walls)
     for (int a : particle_mats) require_pair(a, w.material, fmt::format("particles touch wall '{}'", w.name));
 
-  // Plan: which arrays and passes.
-  s.plan.tangential = false;
-  bool any_rolling = false;
-  for (int a : particle_mats) {
-    for (int b = 0; b < static_cast<int>(nm); ++b) {
-      const MaterialPair& mp = s.pairs[static_cast<std::size_t>(a) * nm + b];
-      if (!mp.a) continue;
-      s.plan.tangential = s.plan.tangential || mp.friction > 0.0;
-      any_rolling = any_rolling || mp.rolling_friction > 0.0;
-    }
-  }
-  if (s.config.rolling != RollingLaw::none && !rotation_switch)
-    contact.fail("rolling", "rolling resistance needs rotation: set [physics] rotation = true");
-  if (s.config.rolling == RollingLaw::none && any_rolling)
-    contact.fail("rolling", "an [[interaction]] sets rolling_friction but no rolling law is named here");
-  s.plan.rotation = rotation_switch && (s.plan.tangential || s.config.rolling != RollingLaw::none);
-  s.plan.history_width = HertzMindlin::history_width(s.plan.tangential, s.config.rolling);
-  {
-    std::vector<HertzMindlin::Params> table(nm * nm);
-    for (std::size_t k = 0; k < nm * nm; ++k)
-      if (s.pairs[k].a) table[k] = HertzMindlin::from_pair(s.pairs[k], s.config.rolling, rolling_damping);
-    s.laws = std::move(table);
-  }
+  // Plan: which arrays and passes. The laws mix each pair's coefficients (and read their own [contact] keys).
+  s.laws = ContactLaws::table_of(s.plan.law);
+  s.rolling = RollingLaws::table_of(s.plan.rolling);
+  std::visit(
+      [&](auto& table, auto& rolling) {
+        using Law = LawOf<decltype(table)>;
+        using Roll = LawOf<decltype(rolling)>;
+        table.resize(nm * nm);
+        rolling.resize(nm * nm);
+        for (std::size_t k = 0; k < nm * nm; ++k)
+          if (s.pairs[k].a) table[k] = Law::from_params(contact, s.pairs[k]), rolling[k] = Roll::from_params(contact, s.pairs[k]);
+        s.plan.tangential = false;
+        for (int a : particle_mats)
+          for (std::size_t b = 0; b < nm; ++b)
+            if (s.pairs[static_cast<std::size_t>(a) * nm + b].a)
+              s.plan.tangential = s.plan.tangential || Law::needs_history(table[static_cast<std::size_t>(a) * nm + b]);
+        if (Roll::needs_rotation && !rotation_switch)
+          contact.fail("rolling", "rolling resistance needs rotation: set [physics] rotation = true");
+        s.plan.rotation = rotation_switch && (s.plan.tangential || Roll::needs_rotation);
+        // A rolling spring's slots follow the contact law's (kept even without friction: one layout).
+        s.plan.history_width =
+            Roll::history_size > 0 ? Law::history_size + Roll::history_size : Law::history_width(s.plan.tangential);
+      },
+      s.laws, s.rolling);
 
   // Particles: an initial state from an earlier run, explicit ones, then factories.
   if (s.plan.rotation) s.particles.enable_rotation();
@@ -555,7 +552,7 @@ Scene load_scene(const std::filesystem::path& path) {
 }
 
 World make_world(const Scene& s) {
-  World w(s.config, s.materials, s.laws, s.particles, s.walls, s.plan.history_width);
+  World w(s.config, s.materials, s.laws, s.rolling, s.particles, s.walls, s.plan.history_width);
   if (s.plan.fluid) w.set_fluid(std::make_shared<fluid::FluidField>(s.fluid));  // fluid hook
   return w;
 }

@@ -17,10 +17,10 @@
 //   [physics]                      # optional
 //   gravity = [0, 0, -9.81]        # m/s2 (default)
 //   rotation = true                # false: spheres do not rotate (no angular arrays)
-//   [contact]
-//   law = "hertz_mindlin"
-//   rolling = "constant_torque"    # "none" | "constant_torque" (EDEM standard) | "elastic_plastic"
-//   rolling_damping = 0.3          # elastic_plastic only: eta_r (critical ratio), default 0.3
+//   [contact]                      # the laws and their own keys: model/laws/ (registry.h lists them)
+//   law = "hertz_mindlin"          # contact law
+//   rolling = "constant_torque"    # rolling law, default "none"
+//   rolling_damping = 0.3          # a key of the elastic_plastic rolling law (eta_r, default 0.3)
 //   [neighbor]
 //   skin = 1e-3                    # m, Verlet skin (default: the smallest particle radius)
 //   [stop]                         # optional: end when the rock is at rest (keys in model/stop_rule.h)
@@ -77,7 +77,8 @@ namespace pastemix::model {
 
 // What the scene needs the engine to run (STYLE 5.3): passes, arrays, history width.
 struct Plan {
-  std::string law = "hertz_mindlin";
+  std::string law;                     // contact law (laws/registry.h)
+  std::string rolling = "none";        // rolling law (laws/registry.h)
   bool rotation = true;       // angular arrays allocated and integrated
   bool tangential = true;     // some pair has friction -> tangential history
   int history_width = 0;      // doubles per contact
@@ -96,7 +97,8 @@ struct Scene {
   WorldConfig config;
   std::vector<Material> materials;
   std::vector<MaterialPair> pairs;  // n_materials^2, symmetric
-  LawTable laws;
+  LawTable laws;                    // contact law parameters per material pair
+  RollingTable rolling;             // rolling law parameters per material pair
   Particles particles;
   std::vector<Wall> walls;
   std::vector<fluid::FluidRegion> fluid;  // [[fluid]] regions (empty: no fluid pass)

@@ -23,8 +23,11 @@
 //
 // Fluid hook (model/fluid/field.h, only with [[fluid]]): after the forces at t + dt, fluid->update() finds
 // the particles in a region and their submerged volumes (and raises the surface); the half kicks of those
-// particles are replaced by the fluid kick (buoyancy + drag integrated stably, never reversing v). Timed
-// into the contact_forces stage (one thread, before the pair pass).
+// particles are replaced by the fluid kick (buoyancy + drag integrated stably, never reversing v). The
+// update and these particles' kicks and drifts are the fluid pass, timed on its own profile line: each
+// thread skips its particles inside a region in the per-particle sweep and then kicks and drifts them, in
+// ascending order, from the field's member list (each particle's operations are its own, so the order of
+// the particles does not change a bit).
 //
 // Outflow (on_exit = "remove"): a drift that takes a particle out of the domain flags it, as it flags a NaN,
 // and the batch of passes stops at the step's barrier (advance() then handles it between passes: positions
@@ -65,10 +68,11 @@ struct StageTimer {
 
 }  // namespace
 
-World::World(WorldConfig config, std::vector<Material> materials, LawTable laws, Particles particles,
-             std::vector<Wall> walls, int history_width)
-    : cfg_(config), materials_(std::move(materials)), laws_(std::move(laws)), p_(std::move(particles)),
-      walls_(std::move(walls)) {
+World::World(WorldConfig config, std::vector<Material> materials, LawTable laws, RollingTable rolling,
+             Particles particles, std::vector<Wall> walls, int history_width)
+    : cfg_(config), materials_(std::move(materials)), laws_(std::move(laws)), rolling_(std::move(rolling)),
+      p_(std::move(particles)), walls_(std::move(walls)) {
+  kick_friction_ = std::visit([](const auto& r) { return LawOf<decltype(r)>::kick_friction; }, rolling_);
   pairs_.width = history_width;
   wall_contacts_.resize(p_.size(), static_cast<int>(walls_.size()), history_width);
 }
@@ -171,17 +175,19 @@ long World::passes(long n, double h, bool initial, double& moved2) {
   wall_state_.resize(static_cast<std::size_t>(threads));
   for (auto& r : results_) r.resize(static_cast<std::size_t>(threads));
   const bool rot = p_.has_rotation;
-  const bool roll = cfg_.rolling == RollingLaw::constant_torque;
+  const bool roll = kick_friction_;
   const bool has_walls = !walls_.empty();
   const int n_materials = static_cast<int>(materials_.size());
   long done = 0, drifts = 0;
   double t_end = t_, d2_end = moved2;
   long bad_end = std::numeric_limits<long>::max();
   int parity_end = pairs_.parity;
-  double pair_s = 0.0, particle_s = 0.0, wait_s = 0.0;
+  double pair_s = 0.0, particle_s = 0.0, fluid_s = 0.0, wait_s = 0.0;
+  const bool wet = fluid_ != nullptr;
   std::visit(
-      [&](const auto& table) {
-        using Law = typename std::decay_t<decltype(table)>::value_type::Law;
+      [&](const auto& table, const auto& rolling) {
+        using Law = LawOf<decltype(table)>;
+        using Roll = LawOf<decltype(rolling)>;
 #pragma omp parallel num_threads(threads)
         {
           const int me = omp_get_thread_num();
@@ -203,13 +209,26 @@ long World::passes(long n, double h, bool initial, double& moved2) {
 #pragma omp single
               fluid_->update(p_, &pairs_.i, &pairs_.j);
             }
+            const auto cf = Clock::now();
             ws.update(walls_, t);
-            const StepContext ctx{t, cfg_.dt, n_materials, cfg_.rolling};
+            const StepContext ctx{t, cfg_.dt, n_materials};
             const Then then = initial ? Then::nothing : (my_done + 1 < n ? Then::kick_drift : Then::kick);
-            pair_forces(laws_, ctx, p_, pairs_, me, cur);
+            pair_forces(laws_, rolling_, ctx, p_, pairs_, me, cur);
             const auto c1 = Clock::now();
             double d2 = 0.0;
             long bad = std::numeric_limits<long>::max();
+            // The closing half kick (and the next opening half kick and drift) of particle a.
+            auto close_kick = [&](long a) {
+              if (then == Then::kick) {
+                kick_one(a, h, rot, roll);
+                return;
+              }
+              kick_twice(a, h, rot, roll);
+              drift_one(a, d2, bad);
+              // The state the other threads read in the next pass (cross pairs).
+              if (threads > 1 && pairs_.ghost_of[a] != PairList::kNone)
+                pairs_.ghost[cur ^ 1][pairs_.ghost_of[a]] = {p_.x[a], p_.v[a], rot ? p_.omega[a] : Vec3{}};
+            };
             // Per owned particle, in this order: pair forces (summed above), wall forces in wall order,
             // then the half kick (and the next opening half kick and drift): the same operations in the
             // same order as separate passes, one sweep of memory.
@@ -222,30 +241,28 @@ long World::passes(long n, double h, bool initial, double& moved2) {
                   tq = p_.torque[a];
                   rc = p_.rolling_capacity[a];
                 }
-                wall_forces_one<Law>(table, ctx, walls_, ws, p_, wall_contacts_, static_cast<std::size_t>(a), f, tq, rc);
+                wall_forces_one<Law, Roll>(table, rolling, ctx, walls_, ws, p_, wall_contacts_,
+                                           static_cast<std::size_t>(a), f, tq, rc);
                 p_.f[a] = f;
                 if (rot) {
                   p_.torque[a] = tq;
                   p_.rolling_capacity[a] = rc;
                 }
               }
-              if (then == Then::nothing) continue;
-              if (then == Then::kick) {
-                kick_one(a, h, rot, roll);
-              } else {
-                kick_twice(a, h, rot, roll);
-                drift_one(a, d2, bad);
-                // The state the other threads read in the next pass (cross pairs).
-                if (threads > 1 && pairs_.ghost_of[a] != PairList::kNone)
-                  pairs_.ghost[cur ^ 1][pairs_.ghost_of[a]] = {p_.x[a], p_.v[a], rot ? p_.omega[a] : Vec3{}};
-              }
+              if (then == Then::nothing || (wet && fluid_->inside(a))) continue;  // fluid: below
+              close_kick(a);
             }
             const auto c2 = Clock::now();
+            if (wet && then != Then::nothing)
+              for (long a : fluid_->members())
+                if (threads == 1 || pairs_.owner[static_cast<std::size_t>(a)] == me) close_kick(a);
+            const auto c3 = Clock::now();
             ++my_done;
             cur ^= 1;  // the cross pairs' history just written
             if (master) {
-              pair_s += std::chrono::duration<double>(c1 - c0).count();
+              pair_s += std::chrono::duration<double>(c1 - cf).count();
               particle_s += std::chrono::duration<double>(c2 - c1).count();
+              fluid_s += std::chrono::duration<double>(cf - c0).count() + std::chrono::duration<double>(c3 - c2).count();
             }
             if (then != Then::kick_drift) break;  // the end of the region is the barrier
             // The next step has begun: its positions are needed by every thread, and its displacement and
@@ -273,7 +290,7 @@ long World::passes(long n, double h, bool initial, double& moved2) {
           }
         }
       },
-      laws_);
+      laws_, rolling_);
   pairs_.parity = parity_end;
   pairs_.sync_cross();
   t_ = t_end;
@@ -282,6 +299,7 @@ long World::passes(long n, double h, bool initial, double& moved2) {
   if (bad_end != std::numeric_limits<long>::max() && bad_index_ < 0) bad_index_ = bad_end;
   profile_.seconds[Profile::contact_forces] += pair_s;
   profile_.seconds[Profile::walls_kick] += particle_s;
+  profile_.seconds[Profile::fluid] += fluid_s;
   profile_.seconds[Profile::wait] += wait_s;
   return done;
 }
@@ -291,7 +309,7 @@ long World::passes(long n, double h, bool initial, double& moved2) {
 double World::kick_drift(double h) {
   const long n = static_cast<long>(p_.size());
   const bool rot = p_.has_rotation;
-  const bool roll = cfg_.rolling == RollingLaw::constant_torque;
+  const bool roll = kick_friction_;
   double max_d2 = 0.0;
   long bad = std::numeric_limits<long>::max();
   const bool parallel = n >= parallel_min_items && omp_get_max_threads() > 1;
@@ -439,27 +457,31 @@ Energies World::energies() const {
     e.potential -= p_.mass[a] * dot(cfg_.gravity, p_.x[a]);
   }
   const std::size_t nm = materials_.size();
-  auto estar = [&](int ma, int mb) {
-    return std::visit([&](const auto& table) { return table[ma * nm + mb].E_star; }, laws_);
-  };
-  for (std::size_t k = 0; k < pairs_.size(); ++k) {
-    const auto a = pairs_.i[k], b = pairs_.j[k];
-    const double rsum = p_.radius[a] + p_.radius[b];
-    const double d = rsum - norm(p_.x[b] - p_.x[a]);
-    if (d <= 0.0) continue;
-    ++e.pair_contacts;
-    const double rs = p_.radius[a] * p_.radius[b] / rsum;
-    e.elastic += 8.0 / 15.0 * estar(p_.material[a], p_.material[b]) * std::sqrt(rs) * std::pow(d, 2.5);
-  }
-  for (std::size_t a = 0; a < n; ++a)
-    for (const Wall& w : walls_) {
-      if (!w.active(t_)) continue;
-      Vec3 nn;
-      const double d = p_.radius[a] - wall_distance(w, w.displacement(t_), p_.x[a], &nn);
-      if (d <= 0.0) continue;
-      ++e.wall_contacts;
-      e.elastic += 8.0 / 15.0 * estar(p_.material[a], w.material) * std::sqrt(p_.radius[a]) * std::pow(d, 2.5);
-    }
+  // The contact law's normal-spring energy (its tangential spring excluded).
+  std::visit(
+      [&](const auto& table) {
+        using Law = LawOf<decltype(table)>;
+        auto pair_of = [&](int ma, int mb) -> const auto& { return table[static_cast<std::size_t>(ma) * nm + mb]; };
+        for (std::size_t k = 0; k < pairs_.size(); ++k) {
+          const auto a = pairs_.i[k], b = pairs_.j[k];
+          const double rsum = p_.radius[a] + p_.radius[b];
+          const double d = rsum - norm(p_.x[b] - p_.x[a]);
+          if (d <= 0.0) continue;
+          ++e.pair_contacts;
+          const double rs = p_.radius[a] * p_.radius[b] / rsum;
+          e.elastic += Law::elastic_energy(pair_of(p_.material[a], p_.material[b]), rs, d);
+        }
+        for (std::size_t a = 0; a < n; ++a)
+          for (const Wall& w : walls_) {
+            if (!w.active(t_)) continue;
+            Vec3 nn;
+            const double d = p_.radius[a] - wall_distance(w, w.displacement(t_), p_.x[a], &nn);
+            if (d <= 0.0) continue;
+            ++e.wall_contacts;
+            e.elastic += Law::elastic_energy(pair_of(p_.material[a], w.material), p_.radius[a], d);
+          }
+      },
+      laws_);
   return e;
 }
 

@@ -19,13 +19,14 @@ namespace pastemix::model {
 
 // Wall-clock seconds spent per stage, as seen by thread 0 (the order is the order of the step):
 // kick_drift = the first half kick and drift of a batch of steps (World::advance; the later ones are fused
-// into walls_kick); neighbor = list rebuilds; contact_forces = the pair pass (and the fluid update before
-// it); walls_kick = the per-particle pass (wall forces, closing half kick, next opening half kick and
-// drift); wait = thread 0 waiting at the step's barrier for the other threads.
+// into walls_kick); neighbor = list rebuilds; contact_forces = the pair pass; walls_kick = the per-particle
+// pass (wall forces, closing half kick, next opening half kick and drift) of the particles outside every
+// fluid region; fluid = the fluid pass (the field's update, then the fluid kicks and drifts of the particles
+// inside a region); wait = thread 0 waiting at the step's barrier for the other threads.
 struct Profile {
-  enum Stage { kick_drift, neighbor, contact_forces, walls_kick, wait, output, count };
-  static constexpr std::array<const char*, count> names{"kick_drift", "neighbor", "contact_forces",
-                                                        "walls_kick", "wait", "output"};
+  enum Stage { kick_drift, neighbor, contact_forces, walls_kick, fluid, wait, output, count };
+  static constexpr std::array<const char*, count> names{"kick_drift", "neighbor", "contact_forces", "walls_kick",
+                                                        "fluid",      "wait",     "output"};
   std::array<double, count> seconds{};
   long rebuilds = 0;
 };
@@ -34,7 +35,7 @@ struct Energies {
   double kinetic = 0.0;      // J, translational
   double rotational = 0.0;   // J
   double potential = 0.0;    // J, gravitational, relative to z = 0 (-m g.x)
-  double elastic = 0.0;      // J, Hertz normal springs (8/15 E* sqrt(R*) delta^2.5); tangential excluded
+  double elastic = 0.0;      // J, the contact law's normal springs (Law::elastic_energy); tangential excluded
   long pair_contacts = 0;
   long wall_contacts = 0;
 };
@@ -53,7 +54,6 @@ struct WorldConfig {
   // on_exit = remove: once more than this fraction of the total particle mass (present + escaped) has
   // left, the run stops anyway (many escapes are a blow-up, not a splash).
   double max_escaped_fraction = 0.05;
-  RollingLaw rolling = RollingLaw::none;
   // Kinetic energy above this (J) is a blow-up; set by the scene from the energy the particles can have.
   double kinetic_limit = 0.0;
 };
@@ -70,8 +70,8 @@ struct Escape {
 
 class World {
  public:
-  World(WorldConfig config, std::vector<Material> materials, LawTable laws, Particles particles,
-        std::vector<Wall> walls, int history_width);
+  World(WorldConfig config, std::vector<Material> materials, LawTable laws, RollingTable rolling,
+        Particles particles, std::vector<Wall> walls, int history_width);
 
   // Advances one step of velocity Verlet (the first call also evaluates the initial forces).
   void step() { advance(1); }
@@ -137,6 +137,8 @@ class World {
   WorldConfig cfg_;
   std::vector<Material> materials_;
   LawTable laws_;
+  RollingTable rolling_;
+  bool kick_friction_ = false;  // the rolling law acts as a friction on omega in the half kick
   Particles p_;
   std::vector<Wall> walls_;
   PairList pairs_;

@@ -23,6 +23,7 @@
 //  * it never overshoots equilibrium, whatever h: the time step is set by the contacts, not the drag.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -69,18 +70,6 @@ double drag_at_rest(const BinghamFluid& f, const Cd& cd, double d) {
   return drag_magnitude(f, cd, kRestSpeed, d);
 }
 
-template <class Cd>
-DragSplit split_drag(const BinghamFluid& f, const Cd& cd, double d, double d0, double s) {
-  DragSplit out{d0, 0.0};
-  if (s > 1e3 * kRestSpeed) out.k = std::max(0.0, (drag_magnitude(f, cd, s, d) - d0) / s);
-  else {
-    // k at s -> 0: the slope of D, by a one-sided difference well above the rest speed.
-    const double ds = 1e-9;
-    out.k = std::max(0.0, (drag_magnitude(f, cd, ds, d) - d0) / ds);
-  }
-  return out;
-}
-
 using Vec = std::array<double, 3>;
 
 // One kick of length h (s): v (m/s) under non-drag force F (N) on mass m (kg) plus drag with the given split.
@@ -101,17 +90,21 @@ inline Vec drag_kick(const Vec& v, const Vec& F, double m, double h, const DragS
   return out;
 }
 
-// The kick with k evaluated at the mean speed of the kick (fixed-point iterations), which makes the
-// update second-order accurate in the variation of k over the kick and exact at equilibrium.
-template <class Cd>
-Vec drag_kick_implicit(const BinghamFluid& f, const Cd& cd, double d, const Vec& v, const Vec& F, double m, double h,
+// The implicit kick: the one FluidField::kick runs and the tests test. `magnitude` is the drag D(s) (N) of
+// any drag law (fluid/drag_laws.h), d0 = D(0+) the part the slope k(s) = (D(s) - d0) / s is measured from,
+// and `held` (N) the rest resistance the kick applies (d0 for a lone sphere; d0 times its cluster factor
+// under the collective rule, collective.h). k is evaluated at the mean speed of the kick (fixed-point
+// iterations), which makes the update second-order accurate in the variation of k over the kick and exact at
+// equilibrium; near rest the slope is a one-sided difference at 1e-9 m/s, well above kRestSpeed.
+template <class D>
+Vec drag_kick_implicit(const D& magnitude, double d0, double held, const Vec& v, const Vec& F, double m, double h,
                        int iterations = 3) {
-  const double d0 = drag_at_rest(f, cd, d);
   const double s0 = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
   double s_eval = s0;
   Vec out = v;
   for (int it = 0; it < iterations; ++it) {
-    out = drag_kick(v, F, m, h, split_drag(f, cd, d, d0, s_eval));
+    const double s = s_eval > 1e3 * kRestSpeed ? s_eval : 1e-9;
+    out = drag_kick(v, F, m, h, DragSplit{held, std::max(0.0, (magnitude(s) - d0) / s)});
     const double s1 = std::sqrt(out[0] * out[0] + out[1] * out[1] + out[2] * out[2]);
     s_eval = 0.5 * (s0 + s1);
   }

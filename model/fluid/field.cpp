@@ -76,7 +76,7 @@ void FluidField::update(const Particles& p, const std::vector<std::uint32_t>* pa
       if (vs <= 0.0) continue;
       region_of_[a] = static_cast<int>(k);
       v_sub_[a] = vs;
-      if (listed) members_.push_back(static_cast<long>(a));
+      members_.push_back(static_cast<long>(a));
       wet[k] += vs;
       return;  // the first region that holds the particle owns it
     }
@@ -177,20 +177,9 @@ Vec3 FluidField::kick(long a, const Vec3& v, const Vec3& F, double mass, double 
   const double m_eff = mass / phi;
   const fluid::Vec Fv{force.x / phi, force.y / phi, force.z / phi};
   const fluid::Vec v0{v.x, v.y, v.z};
-  // drag_kick_implicit of bingham_drag.h, with `magnitude` in place of drag_magnitude (the yield switch).
   const double d0 = magnitude(kRestSpeed);
   // The cluster's share of the rest resistance (collective.h); the speed-dependent part stays the sphere's.
-  const double d0_held = d0 * yield_factor(a);
-  const double s0 = norm(v);
-  double s_eval = s0;
-  fluid::Vec out = v0;
-  for (int it = 0; it < 3; ++it) {
-    DragSplit split{d0_held, 0.0};
-    const double s = s_eval > 1e3 * kRestSpeed ? s_eval : 1e-9;
-    split.k = std::max(0.0, (magnitude(s) - d0) / s);
-    out = drag_kick(v0, Fv, m_eff, h, split);
-    s_eval = 0.5 * (s0 + std::sqrt(out[0] * out[0] + out[1] * out[1] + out[2] * out[2]));
-  }
+  const fluid::Vec out = drag_kick_implicit(magnitude, d0, d0 * yield_factor(a), v0, Fv, m_eff, h);
   return {out[0], out[1], out[2]};
 }
 

@@ -13,7 +13,7 @@
 //                                           full volume once the centre is below the surface, else none)
 //   drag      phi D(|v|) opposing v        (D: Dedegil 4.9 with the region's curve; phi = V_sub / V scales
 //                                           the whole drag, yield term included, by the submerged fraction)
-// The drag enters through drag_kick_implicit with F = contacts + m g + buoyancy: m dv/dt = F - phi D is
+// The drag enters through drag_kick_implicit (bingham_drag.h, the one kernel) with F = contacts + m g + buoyancy: m dv/dt = F - phi D is
 // solved as (m/phi) dv/dt = F/phi - D, the same kernel with a scaled mass and force. The half kick of the
 // Verlet step is thus stable for any dt, and the yield term cannot reverse the velocity (stick, no chatter).
 // No fluid torque is applied (the spin is untouched by the fluid: a stated simplification).
@@ -88,6 +88,8 @@ class FluidField {
   Vec3 kick(long a, const Vec3& v, const Vec3& F, double mass, double radius, double h, const Vec3& g) const;
 
   bool inside(long a) const { return region_of_[a] >= 0; }
+  // The particles inside a region at the last update(), ascending (the World's fluid pass).
+  const std::vector<long>& members() const { return members_; }
   int region_of(long a) const { return region_of_[a]; }
   double submerged_volume(long a) const { return v_sub_[a]; }
   const std::vector<FluidRegion>& regions() const { return regions_; }

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// Hertz-Mindlin (no slip) with restitution damping, Coulomb-limited tangential spring and rolling
-// resistance: the law EDEM and LIGGGHTS call "hertz" (DESIGN.md section 3).
+// Hertz-Mindlin (no slip) with restitution damping and a Coulomb-limited tangential spring: the law EDEM and
+// LIGGGHTS call "hertz" (DESIGN.md section 3). Rolling resistance is a law of its own (laws/rolling.h).
 //
 //   1/E* = (1-nu1^2)/E1 + (1-nu2^2)/E2    1/R* = 1/R1 + 1/R2    1/m* = 1/m1 + 1/m2
 //   1/G* = (2-nu1)/G1 + (2-nu2)/G2        beta = ln e / sqrt(ln^2 e + pi^2)
@@ -10,19 +10,21 @@
 //   |F_t| <= mu_s F_n (on slip the spring is rescaled so that S_t |delta_t| = mu_s F_n)
 //
 // Walls are spheres of infinite radius and mass: the caller passes R* = R_particle and m* = m_particle.
-// The kernel is stateless; the tangential spring delta_t (and the rolling spring for the elastic-plastic
-// law) live in the caller's history slots, keyed by the pair of particle ids.
+// The kernel is stateless; the tangential spring delta_t lives in the caller's history slots, keyed by the
+// pair of particle ids.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
 
+#include "base/params.h"
 #include "model/material.h"
 #include "model/vec3.h"
 
 namespace pastemix::model {
 
 struct HertzMindlin {
+  static constexpr const char* name = "hertz_mindlin";
   struct Params {
     using Law = HertzMindlin;  // lets a visitor of LawTable name the law of a table
     double E_star = 0.0;         // Pa, effective Young's modulus
@@ -30,20 +32,20 @@ struct HertzMindlin {
     double damping = 0.0;        // -, -2 sqrt(5/6) beta >= 0 (0 when e = 1)
     double sqrt_st_over_sn = 0.0;  // -, sqrt(S_t / S_n) = sqrt(4 G* / E*): saves a sqrt per contact
     double friction = 0.0;       // -, mu_s
-    double rolling_friction = 0.0;  // -, mu_r
-    double rolling_damping = 0.0;   // -, eta_r of the elastic-plastic law (critical-damping ratio)
-    RollingLaw rolling = RollingLaw::none;
   };
 
-  // History per contact: tangential spring (3) + rolling spring (3, elastic-plastic only).
-  static constexpr int history_size = 6;
-  static int history_width(bool tangential, RollingLaw rolling) {
-    return rolling == RollingLaw::elastic_plastic ? 6 : (tangential ? 3 : 0);
-  }
+  // History per contact: the tangential spring (m). A scene without friction needs none (width 0).
+  static constexpr int history_size = 3;
+  static int history_width(bool tangential) { return tangential ? history_size : 0; }
+  // Whether a pair with these parameters needs the tangential history.
+  static bool needs_history(const Params& p) { return p.friction > 0.0; }
   static constexpr bool needs_torque = true;
 
+  // The law reads no [contact] keys of its own: e, mu_s and the materials' E, nu come with the pair.
+  static Params from_params(const pastemix::Params&, const MaterialPair& p) { return from_pair(p); }
+
   // Mixes a material pair once, at load time.
-  static Params from_pair(const MaterialPair& p, RollingLaw rolling, double rolling_damping) {
+  static Params from_pair(const MaterialPair& p) {
     const Material& a = *p.a;
     const Material& b = *p.b;
     Params q;
@@ -55,10 +57,12 @@ struct HertzMindlin {
     q.damping = -2.0 * std::sqrt(5.0 / 6.0) * beta;
     q.sqrt_st_over_sn = std::sqrt(4.0 * q.G_star / q.E_star);
     q.friction = p.friction;
-    q.rolling_friction = p.rolling_friction;
-    q.rolling = rolling;
-    q.rolling_damping = rolling_damping;
     return q;
+  }
+
+  // J, elastic energy of the normal spring at overlap delta: 8/15 E* sqrt(R*) delta^2.5 (tangential excluded).
+  static double elastic_energy(const Params& p, double R_star, double overlap) {
+    return 8.0 / 15.0 * p.E_star * std::sqrt(R_star) * std::pow(overlap, 2.5);
   }
 
   // Geometry and kinematics of one contact, seen from particle i. n points from i to j; for a wall, i is
@@ -69,15 +73,15 @@ struct HertzMindlin {
     double R_star;       // m
     double m_star;       // kg
     Vec3 v_rel;          // m/s, velocity of j's contact point minus i's
-    Vec3 w_rel;          // rad/s, omega_i - omega_j (rolling); unused without rotation
+    Vec3 w_rel;          // rad/s, omega_i - omega_j: unused here (the rolling law's input)
     double arm_i;        // m, centre of i to contact point
     double dt;           // s
   };
   struct Result {
     Vec3 force_i;          // N, on i (j gets -force_i)
     Vec3 tangential_i;     // N, tangential part of force_i (the caller turns it into torques)
-    Vec3 rolling_torque_i; // N.m, elastic-plastic rolling moment on i (j gets the opposite)
     double normal_force;   // N, F_n >= 0 used for Coulomb and rolling limits
+    double normal_stiffness;  // N/m, S_n = 2 E* sqrt(R* delta) (a rolling spring scales with it)
   };
 
   // Structure of arrays for force_batch(): kBatch sphere-sphere contacts, one per lane. Inputs as in
@@ -95,6 +99,11 @@ struct HertzMindlin {
     double fx[kBatch], fy[kBatch], fz[kBatch], tx[kBatch], ty[kBatch], tz[kBatch];
     double fn[kBatch], arm_a[kBatch], arm_b[kBatch];
   };
+  // Lane e of b gets the parameters of its contact.
+  static void load_params(Batch& b, int e, const Params& p) {
+    b.E_star[e] = p.E_star, b.G_star[e] = p.G_star, b.damping[e] = p.damping;
+    b.sqrt_st_over_sn[e] = p.sqrt_st_over_sn, b.friction[e] = p.friction;
+  }
   // Contacts 0 .. m-1 of b: the operations of the pair pass plus force() with a tangential spring (width
   // 3), rotation on and no rolling spring, in the same order, lane by lane; the branches become selects
   // (both sides computed, lanes whose side is not taken discarded), so the compiler runs 4 contacts per
@@ -172,7 +181,7 @@ struct HertzMindlin {
     }
   }
 
-  // history: `width` doubles owned by this contact (tangential spring, then rolling spring).
+  // history: the contact's slots (width 0: no tangential spring; else the spring in history[0..3)).
   static Result force(const Params& p, const Geometry& g, double* history, int width) {
     Result r{};
     const double sqrt_Rd = std::sqrt(g.R_star * g.overlap);
@@ -182,6 +191,7 @@ struct HertzMindlin {
     const double sqrt_sn_m = std::sqrt(Sn * g.m_star);
     const double fn = fn_elastic - p.damping * sqrt_sn_m * vn;  // repulsive > 0
     r.normal_force = std::max(fn, 0.0);
+    r.normal_stiffness = Sn;
     r.force_i = g.n * (-fn);
     if (width == 0) return r;
 
@@ -213,34 +223,6 @@ struct HertzMindlin {
     history[2] = xi.z;
     r.tangential_i = ft;
     r.force_i += ft;
-
-    if (p.rolling == RollingLaw::elastic_plastic) {
-      // Rolling spring on the relative rotation omega_i - omega_j, limited by mu_r R* F_n; the dashpot acts
-      // only while the spring is below its limit (Ai et al. 2011). The whole relative rotation is used, the
-      // twist about n included (as LIGGGHTS epsd2 does): with the tangential part only, a sphere spinning
-      // about the vertical on a floor never stops and a pile never comes to rest (seen in the pile test).
-      Vec3 m{history[3], history[4], history[5]};
-      const Vec3 wr = g.w_rel;
-      const double kn = Sn;
-      const double kr = 2.25 * kn * p.rolling_friction * p.rolling_friction * g.R_star * g.R_star;
-      m -= wr * (kr * g.dt);
-      const double m_max = p.rolling_friction * g.R_star * r.normal_force;
-      const double m_len = norm(m);
-      Vec3 total = m;
-      if (m_len > m_max) {
-        m *= m_max / m_len;
-        total = m;
-      } else {
-        // Rolling inertia of the pair about the contact: I_r = m* R*^2 (sphere-sphere estimate, 1.4 of
-        // the solid-sphere 2/5 m r^2 seen from the contact point, as LIGGGHTS epsd2 approximates).
-        const double cr = p.rolling_damping * 2.0 * std::sqrt(1.4 * g.m_star * g.R_star * g.R_star * kr);
-        total -= wr * cr;
-      }
-      history[3] = m.x;
-      history[4] = m.y;
-      history[5] = m.z;
-      r.rolling_torque_i = total;
-    }
     return r;
   }
 };

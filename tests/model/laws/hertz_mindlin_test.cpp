@@ -50,7 +50,7 @@ std::string two_spheres(const MaterialRow& m, double e, double mu, double vt, do
 TEST_CASE("Hertz-Mindlin kernel: zero force without overlap history, formula at a given overlap") {
   Material a{"a", 7750, 2e11, 0.3};
   MaterialPair pr{&a, &a, 1.0, 0.0, 0.0};
-  const auto p = HertzMindlin::from_pair(pr, RollingLaw::none, 0.0);
+  const auto p = HertzMindlin::from_pair(pr);
   CHECK(p.E_star == doctest::Approx(2e11 / (2 * (1 - 0.09))).epsilon(1e-14));
   CHECK(p.damping == 0.0);
   HertzMindlin::Geometry g{{1, 0, 0}, 1e-5, 0.005, 0.01, {}, {}, 0.01, 1e-7};
@@ -58,7 +58,7 @@ TEST_CASE("Hertz-Mindlin kernel: zero force without overlap history, formula at 
   CHECK(r.force_i.x == doctest::Approx(-4.0 / 3.0 * p.E_star * std::sqrt(0.005) * std::pow(1e-5, 1.5)).epsilon(1e-13));
   // Damping opposes approach: e < 1 makes an approaching pair push harder.
   MaterialPair pd{&a, &a, 0.5, 0.0, 0.0};
-  const auto q = HertzMindlin::from_pair(pd, RollingLaw::none, 0.0);
+  const auto q = HertzMindlin::from_pair(pd);
   g.v_rel = {-1, 0, 0};
   CHECK(HertzMindlin::force(q, g, nullptr, 0).force_i.x < r.force_i.x);
 }
@@ -66,8 +66,8 @@ TEST_CASE("Hertz-Mindlin kernel: zero force without overlap history, formula at 
 TEST_CASE("Hertz-Mindlin batch kernel: the same bits as force(), lane by lane (stick, slip, new contacts)") {
   Material a{"a", 2760, 4.68e7, 0.19}, b{"b", 7800, 2e11, 0.3};
   MaterialPair pab{&a, &b, 0.79, 0.466, 0.15}, paa{&a, &a, 0.5, 0.2, 0.0};
-  const HertzMindlin::Params prm[2] = {HertzMindlin::from_pair(pab, RollingLaw::constant_torque, 0.0),
-                                       HertzMindlin::from_pair(paa, RollingLaw::none, 0.0)};
+  const HertzMindlin::Params prm[2] = {HertzMindlin::from_pair(pab),
+                                       HertzMindlin::from_pair(paa)};
   Rng rng(7);
   HertzMindlin::Batch B;
   const int m = 61;  // not a multiple of the vector width
