@@ -119,7 +119,7 @@ TEST_CASE("scene: `pastemix run` exits 2 with file:line on a bad scene and write
   CHECK_FALSE(std::filesystem::exists(dir + "/bad.h5"));
 }
 
-TEST_CASE("scene: [domain] on_exit = stop by default, remove with max_escaped_fraction; bad values name file:line") {
+TEST_CASE("scene: [domain] on_exit = stop by default, remove with max_escaped_fraction, bad values name file:line") {
   const std::string sphere = "[[particle]]\nmaterial = \"rock\"\nradius = 0.01\nposition = [0, 0, 0]\n";
   // Extra [domain] keys go on lines 6, 7, ... (after max on line 5).
   auto with_domain = [&](const std::string& extra) {

@@ -239,7 +239,7 @@ TEST_CASE("diagnostics: a particle leaving the domain and a blow-up stop the run
   CHECK((msg.find("blow-up") != std::string::npos || msg.find("left the domain") != std::string::npos));
 }
 
-TEST_CASE("funnel: filled by the factory, plate removed, lifted at 0.01 m/s; rock flows through the exit") {
+TEST_CASE("funnel: filled by the factory, plate removed, lifted at 0.01 m/s, rock flows through the exit") {
   std::ifstream in(pastemix::test::source_path("datasets/scenes/funnel_lift.toml"));
   std::stringstream buf;
   buf << in.rdbuf();

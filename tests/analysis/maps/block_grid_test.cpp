@@ -25,7 +25,7 @@ TEST_CASE("block grid: a sphere inside one block puts all its mass there") {
   CHECK(m.in_blocks == doctest::Approx(m.total).epsilon(1e-12));
 }
 
-TEST_CASE("block grid: a sphere cut by the surface is half unmixed; the open top counts it whole in layer 1") {
+TEST_CASE("block grid: a sphere cut by the surface is half unmixed, the open top counts it whole in layer 1") {
   BlockLayout grid;  // top_open by default: the lab cut the unmixed cone with layer 1
   std::vector<std::array<double, 3>> pos{{0.075, 0.0825, 0.10}};
   std::vector<double> r{0.004}, rho{2760};

@@ -61,7 +61,7 @@ TEST_CASE("mixing map: one 2 cm rock in M_221 gives the hand-computed C and S") 
   CHECK(noK.C[b] == doctest::Approx(m.C[b]).epsilon(1e-15));
 }
 
-TEST_CASE("mixing map: rock above the final surface is unmixed; it counts in layer 1 but displaces no paste") {
+TEST_CASE("mixing map: rock above the final surface is unmixed, it counts in layer 1 but displaces no paste") {
   // A rock sitting on the surface of M_221 with 3/4 of its height above it, and one wholly above M_311.
   std::vector<std::array<double, 3>> pos{{0.075, 0.0825, 0.105}, {0.12, 0.03, 0.15}};
   std::vector<double> r{0.01, 0.005}, rho{2760, 2760};

@@ -107,7 +107,7 @@ TEST_CASE("result file: every missing or bad input names the file and the field"
   CHECK(error_of([&] { read_result(path, o); }).find("snapshot 5") != std::string::npos);
 }
 
-TEST_CASE("result file: escaped rock up to the snapshot is poured mass; the maps' balances hold with it to 1e-9") {
+TEST_CASE("result file: escaped rock up to the snapshot is poured mass, the maps' balances hold with it to 1e-9") {
   ScratchDir d("result_escaped");
   ResultSpec s;
   // Rock in blocks, beside the grid (x < 0), below it, above the surface in the open top and beside it.

@@ -69,7 +69,7 @@ TEST_CASE("psd_cut drops the intervals below the cut and renormalises - a cut ab
   CHECK_THROWS_AS(at_value(d, o, 4e-3), InputError);
 }
 
-TEST_CASE("a run that blows up is a failed point, not the end of the sweep; --jobs 2 gives the same numbers") {
+TEST_CASE("a run that blows up is a failed point, not the end of the sweep, --jobs 2 gives the same numbers") {
   const auto base = model::SceneDoc::parse_file(test::source_path("datasets/scenes/hertz_impact_m3.toml"));
   SweepOptions o;
   o.vary = "dt";

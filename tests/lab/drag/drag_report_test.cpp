@@ -22,7 +22,7 @@ std::string slurp(const fs::path& p) {
 }
 }  // namespace
 
-TEST_CASE("drag-fit command: writes the table, CSVs and the curve TOML; parameters carry the chosen curve") {
+TEST_CASE("drag-fit command: writes the table, CSVs and the curve TOML, parameters carry the chosen curve") {
   const auto out = fs::temp_directory_path() / "pastemix_drag_fit_cmd";
   fs::remove_all(out);
   const auto r = pastemix::test::run_pastemix("lab drag-fit '" + pastemix::test::source_path("datasets/thesis") +

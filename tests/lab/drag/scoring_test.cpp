@@ -68,7 +68,7 @@ TEST_CASE("scoring: the chosen fitted curve is continuous, monotone and settles 
   CHECK(b.in_sample.converged);
 }
 
-TEST_CASE("scoring: the published curve traps spheres; the thesis model's 90 pairs score as documented") {
+TEST_CASE("scoring: the published curve traps spheres, the thesis model's 90 pairs score as documented") {
   const auto& r = result();
   CHECK(r.published_score.n == 121);
   CHECK(r.published_score.trapped > 0);

@@ -54,7 +54,7 @@ TEST_CASE("fluid: 0.1 mm grain settling in water matches v_t (1 - exp(-t / tau))
   }
 }
 
-TEST_CASE("fluid: a sphere at rest below the yield threshold stays exactly at rest; just above, it sinks") {
+TEST_CASE("fluid: a sphere at rest below the yield threshold stays exactly at rest, just above, it sinks") {
   // Paste of the thesis (75 % solids): 1843 kg/m3, tau_y 136 Pa, eta_B 0.7 Pa.s; a steel ball 8135 kg/m3.
   const BinghamFluid paste{1843.0, 136.0, 0.7};
   for (auto curve : {0, 1}) {

@@ -174,7 +174,7 @@ RaftEnd run_raft(int n, double d, double rho_p, double tau, const std::string& c
 
 }  // namespace
 
-TEST_CASE("collective: a 6 x 6 raft sinks to the depth where its load equals the footing capacity (within 0.5 %); without the rule, or alone, a sphere stays") {
+TEST_CASE("collective: a 6 x 6 raft sinks to the depth where its load equals the footing capacity (within 0.5 %), without the rule, or alone, a sphere stays") {
   const double d = 0.01, r = 0.005, tau = 20.0, rho_f = 1500.0, g = 9.81;
   const double volume = 4.0 / 3.0 * M_PI * r * r * r;
   // Plastic viscosity 1 Pa.s: the sinking is overdamped (relaxation ~0.7 s), so the raft creeps onto the

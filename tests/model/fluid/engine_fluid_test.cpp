@@ -212,7 +212,7 @@ TEST_CASE("fluid engine: all 121 Valentik & Whitmore spheres: DEM terminal veloc
   CHECK(worst < 0.01);
 }
 
-TEST_CASE("fluid engine: the surface rises by the submerged volume over the box area; buoyancy floats a light sphere") {
+TEST_CASE("fluid engine: the surface rises by the submerged volume over the box area, buoyancy floats a light sphere") {
   SphereRun r;
   r.d = 0.02, r.rho_p = 500, r.rho_f = 1000, r.eta = 0.5, r.curve = {drag::CurveId::stokes, {}}, r.dt = 1e-4;
   r.depth = 0.1, r.box_half = 0.05, r.drop = 0.0;  // released with its bottom on the surface
