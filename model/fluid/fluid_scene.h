@@ -14,6 +14,10 @@
 //   curve = "power_blend"  coefficients = [k, a, b, c, n]    # or curve = "published_4_19" / "stokes", or
 //   curve_from = "parameters.toml"       # lab reduce output (relative to the scene file): drag_curve.chosen
 //   solids_fraction = 0.75               # -, optional (0), recorded for the analysis maps
+//   rheology_from = "../../out/lab/parameters.toml"   # instead of density, yield_stress, plastic_viscosity:
+//                                        # the store's paste_rheology.cw_<C_w> values for this solids_fraction
+//                                        # (required then), written by `pastemix lab reduce`; `curve` must be
+//                                        # the store's paste_rheology.model.curve (the curve eta_B belongs to)
 //   buoyancy = true  yield_term = true  partial_submergence = true  surface_rise = true   # switches
 //   collective = "bearing_capacity"      # or "none" (default): touching spheres share the paste's bearing
 //                                        # capacity (collective.h); needs yield_stress > 0
@@ -51,5 +55,18 @@ struct LabPaste {
   std::optional<double> eta_B, ball_restitution, ball_friction, ball_density;
 };
 LabPaste read_lab_paste(const std::string& parameters_toml, const std::string& curve_name = "");
+
+// The paste rheology a store (`lab reduce`, lab/rheology/paste_rheology.h) gives at one solids content:
+// paste_rheology.cw_<...>.{yield_stress, plastic_viscosity, density}, matched by solids_fraction (1e-9), and
+// paste_rheology.model.curve. InputError naming the file when the model or that solids content is missing.
+struct StoreRheology {
+  std::string key;                // paste_rheology.cw_72_5
+  double yield_stress = 0.0;      // Pa
+  double plastic_viscosity = 0.0; // Pa.s
+  double density = 0.0;           // kg/m3
+  std::string curve;              // the drag curve eta_B belongs to
+  std::string provenance;         // "model exponential, shape parameter calibrated on case 2" or "... (prior)"
+};
+StoreRheology read_store_rheology(const std::string& parameters_toml, double solids_fraction);
 
 }  // namespace pastemix::model::fluid
