@@ -76,17 +76,12 @@ double equivalent_packing_fraction(const Anchor& a, double factor) {
 }
 
 Prior prior(Family f, const Anchor& a) {
-  Prior p;
-  if (f == Family::exponential) {
-    p.lo = std::log(kFactorLow) / (100.0 * kStep);
-    p.hi = std::log(kFactorHigh) / (100.0 * kStep);
-    p.name = "b", p.unit = "1/wt%";
-  } else {
-    p.lo = equivalent_packing_fraction(a, kFactorHigh);  // steepest rise: closest to the anchor's phi
-    p.hi = equivalent_packing_fraction(a, kFactorLow);
-    p.name = "phi_m", p.unit = "-";
-  }
-  return p;
+  if (f == Family::exponential)
+    return Prior{std::log(kFactorLow) / (100.0 * kStep), std::log(kFactorHigh) / (100.0 * kStep), std::string("b"),
+                 std::string("1/wt%")};
+  // The steepest rise (factor 4.5) has the packing fraction closest to the anchor's phi: the low end.
+  return Prior{equivalent_packing_fraction(a, kFactorHigh), equivalent_packing_fraction(a, kFactorLow),
+               std::string("phi_m"), std::string("-")};
 }
 
 void check_anchor(const Anchor& a, const std::string& where) {
@@ -111,7 +106,7 @@ void check_shape(Family f, const Anchor& a, double shape, const std::string& whe
   if (!std::isfinite(shape)) throw InputError(where, 0, field, fmt::format("not a finite number ({})", shape));
   if (shape < p.lo || shape > p.hi)
     throw InputError(where, 0, field,
-                     fmt::format("{} = {:.6g} {} is outside its prior range [{:.6g}, {:.6g}] ({})", p.name, shape,
+                     fmt::format("{} = {:.6g} {} is outside its prior range [{:.6g}, {:.6g}] ({})", field, shape,
                                  p.unit, p.lo, p.hi, kPriorSource));
 }
 

@@ -60,7 +60,12 @@ void read_rheology_from(const Params& f, const std::string& scene_path, FluidReg
     f.fail("rheology_from", fmt::format("no such parameter store: {} (run `pastemix lab reduce datasets/thesis --out "
                                         "out/lab` first)",
                                         file.string()));
-  const StoreRheology s = read_store_rheology(file.string(), r.solids_fraction);
+  StoreRheology s;
+  try {
+    s = read_store_rheology(file.string(), r.solids_fraction);
+  } catch (const InputError& e) {  // name the scene's key too: the fix may be in either file
+    f.fail("rheology_from", e.what());
+  }
   r.fluid.density = s.density;
   r.fluid.yield_stress = s.yield_stress;
   r.fluid.plastic_viscosity = s.plastic_viscosity;
