@@ -13,6 +13,7 @@
 #include <toml++/toml.h>
 
 #include "analysis/maps/mixing_map.h"
+#include "analysis/maps/motion.h"
 #include "analysis/maps/result_file.h"
 #include "analysis/score/lab_case.h"
 #include "base/error.h"
@@ -28,8 +29,11 @@ namespace rh = lab::rheology;
 namespace {
 
 // Per-layer rock mass (kg) of a result file, by the maps code on the layout (rock above the surface in layer 1).
+// A state not at rest (the maps' own test, analysis/maps/motion.h) is a failed run, as `pastemix maps` refuses it.
 std::array<double, 3> layer_rock(const fs::path& h5, const analysis::BlockLayout& layout) {
   const analysis::ResultSnapshot r = analysis::read_result(h5, {});
+  const analysis::Motion motion = analysis::motion_of(r, {});
+  if (!motion.at_rest()) throw RuntimeFailure(motion.refusal(r));
   analysis::MixingInputs in;
   in.layout = layout;
   in.surface_z = r.surface_z.value;

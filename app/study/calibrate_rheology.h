@@ -21,7 +21,9 @@
 //
 // Runs: each (point, seed) is one scene run (`model::run_scene`, one thread each with `jobs` > 1) whose result
 // file is kept under OUT/runs/<scene hash>.h5, the hash of the resolved scene text (every override, the
-// rheology values and the seed are in it); a file already there is read, never recomputed.
+// rheology values and the seed are in it); a file already there is read, never recomputed. A run whose final
+// state is not at rest (the maps' test, analysis/maps/motion.h: more than 1 g faster than 0.01 m/s; a scene
+// with [stop] rule = "at_rest" ends there) fails its point, which is then left out of the fit and reported.
 #pragma once
 
 #include <array>
