@@ -39,7 +39,8 @@ void write_store(const std::string& store, std::string dataset, const std::strin
     const Params root = Params::parse_file(store);
     dataset = root.table("reduce").string("dataset");  // not finish()ed: only this key is read
   }
-  const std::string out = std::filesystem::path(store).parent_path().string();
+  std::string out = std::filesystem::path(store).parent_path().string();
+  if (out.empty()) out = ".";
   lab::ReduceOptions ro;
   ro.rheology_calibration = record;
   const lab::ReduceResult r = lab::reduce(dataset, ro);

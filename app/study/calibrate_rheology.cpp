@@ -201,6 +201,7 @@ model::SceneDoc with_rheology(const model::SceneDoc& base, double tau_y, double 
     auto* t = f.as_table();
     if (!t || !t->contains("rheology_from")) continue;
     t->erase("rheology_from");
+    t->erase("rheology_at");
     t->insert_or_assign("yield_stress", tau_y);
     t->insert_or_assign("plastic_viscosity", eta_B);
     t->insert_or_assign("density", density);

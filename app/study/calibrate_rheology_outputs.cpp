@@ -24,6 +24,9 @@ std::string calibration_table(const RheologyCalResult& r, const RheologyCalOptio
   t << fmt::format("objective J = (1/3) sum_k ((M_k - L_k)/L_k)^2 of the seed-mean layers; {} seed(s) per point "
                    "(common random numbers); eta_B x {:g}\n",
                    o.seeds, o.eta_factor);
+  if (o.seeds < 3)
+    t << fmt::format("WARNING: {} seed(s) per point: the seed spread is not usable (the protocol asks for >= 3)\n",
+                     o.seeds);
   t << fmt::format("runs: {} in all, {} computed now, {} read back from {}/runs\n", r.runs_total, r.runs_executed,
                    r.runs_total - r.runs_executed, o.out.string());
   t << fmt::format("  {:>9} | {:>8} | {:>8} | {:>7} | {:>15} | {:>15} | {:>15} | {:>9} | {:>9} | {:>17}\n", p.name,

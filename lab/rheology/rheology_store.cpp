@@ -86,6 +86,21 @@ void model_parameters(std::vector<Parameter>& out, const Model& m, const ShapeSo
                      "Krieger & Dougherty (1959), [eta] = 2.5"));
 }
 
+// The band of the protocol: tau_y and eta_B with the shape parameter at -1 sd and +1 sd (k.minus_sd.*,
+// k.plus_sd.*), read by a scene's `rheology_at = "minus_sd" | "plus_sd"`. Both move together: one parameter.
+void band_parameters(std::vector<Parameter>& out, const Model& m, double cw, const std::string& k, const std::string& src) {
+  const double sd = std::isfinite(m.shape_sd) ? m.shape_sd : 0.0;
+  for (const auto& [name, sign] : {std::pair{"minus_sd", -1.0}, std::pair{"plus_sd", 1.0}}) {
+    Model b = m;
+    b.shape = m.shape + sign * sd;
+    const std::string how = fmt::format("{} = {:.6g} (the shape parameter {} 1 sd)", prior(m.family, m.anchor).name,
+                                        b.shape, sign < 0 ? "-" : "+");
+    out.push_back(make(fmt::format("{}.{}.yield_stress", k, name), yield_stress(b, cw), "Pa", Provenance::assumed, how, src));
+    out.push_back(make(fmt::format("{}.{}.plastic_viscosity", k, name), plastic_viscosity(b, cw), "Pa.s",
+                       Provenance::assumed, how, src));
+  }
+}
+
 }  // namespace
 
 std::vector<Parameter> store_parameters(const Model& m, const ShapeSource& s, const std::vector<double>& cws,
@@ -115,6 +130,7 @@ std::vector<Parameter> store_parameters(const Model& m, const ShapeSource& s, co
     out.push_back(eta);
     out.push_back(make(k + ".density", pt.density, "kg/m3", anchor ? Provenance::measured : Provenance::assumed,
                        anchor ? "the anchor (slump file)" : "mixture rule with the anchor's air content", anchor_source));
+    band_parameters(out, m, cw, k, src);
   }
   return out;
 }

@@ -62,7 +62,8 @@ void read_rheology_from(const Params& f, const std::string& scene_path, FluidReg
                                         file.string()));
   StoreRheology s;
   try {
-    s = read_store_rheology(file.string(), r.solids_fraction);
+    s = read_store_rheology(file.string(), r.solids_fraction,
+                            f.choice_or("rheology_at", {"value", "minus_sd", "plus_sd"}, "value"));
   } catch (const InputError& e) {  // name the scene's key too: the fix may be in either file
     f.fail("rheology_from", e.what());
   }
@@ -97,7 +98,7 @@ drag::DragCurve read_chosen_curve(const std::string& parameters_toml, const std:
   return c;
 }
 
-StoreRheology read_store_rheology(const std::string& file, double solids_fraction) {
+StoreRheology read_store_rheology(const std::string& file, double solids_fraction, const std::string& at) {
   const Params root = Params::parse_file(file);
   const auto pr = root.optional_table("paste_rheology");
   if (!pr)
@@ -113,8 +114,9 @@ StoreRheology read_store_rheology(const std::string& file, double solids_fractio
     if (std::abs(cw - solids_fraction) > 1e-9) continue;
     StoreRheology s;
     s.key = "paste_rheology." + key;
-    s.yield_stress = t.table("yield_stress").number("value", Range::non_negative);
-    s.plastic_viscosity = t.table("plastic_viscosity").number("value", Range::positive);
+    const Params band = at == "value" ? t : t.table(at);  // minus_sd / plus_sd: the protocol's band
+    s.yield_stress = band.table("yield_stress").number("value", Range::non_negative);
+    s.plastic_viscosity = band.table("plastic_viscosity").number("value", Range::positive);
     s.density = t.table("density").number("value", Range::positive);
     s.provenance = t.table("yield_stress").string("method");
     const Params model = pr->table("model");
@@ -167,6 +169,7 @@ std::vector<FluidRegion> read_fluid_regions(const Params& root, const std::strin
     r.z_surface0 = f.number("surface");
     if (!(r.z_surface0 > r.z_bottom)) f.fail("surface", "the free surface must lie above the bottom");
     r.rheology = f.choice("rheology", {"newtonian", "bingham"});
+    if (f.has("rheology_at") && !f.has("rheology_from")) f.fail("rheology_at", "needs rheology_from");
     if (f.has("rheology_from")) {
       read_rheology_from(f, scene_path, r);
     } else if (r.rheology == "newtonian") {

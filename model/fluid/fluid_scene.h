@@ -18,6 +18,7 @@
 //                                        # the store's paste_rheology.cw_<C_w> values for this solids_fraction
 //                                        # (required then), written by `pastemix lab reduce`; `curve` must be
 //                                        # the store's paste_rheology.model.curve (the curve eta_B belongs to)
+//   rheology_at = "value"                # or "minus_sd" / "plus_sd": the store's band (shape parameter -/+ 1 sd)
 //   buoyancy = true  yield_term = true  partial_submergence = true  surface_rise = true   # switches
 //   collective = "bearing_capacity"      # or "none" (default): touching spheres share the paste's bearing
 //                                        # capacity (collective.h); needs yield_stress > 0
@@ -67,6 +68,8 @@ struct StoreRheology {
   std::string curve;              // the drag curve eta_B belongs to
   std::string provenance;         // "model exponential, shape parameter calibrated on case 2" or "... (prior)"
 };
-StoreRheology read_store_rheology(const std::string& parameters_toml, double solids_fraction);
+// `at`: "value", or "minus_sd" / "plus_sd" (tau_y and eta_B with the shape parameter at -1 / +1 sd: the band).
+StoreRheology read_store_rheology(const std::string& parameters_toml, double solids_fraction,
+                                  const std::string& at = "value");
 
 }  // namespace pastemix::model::fluid

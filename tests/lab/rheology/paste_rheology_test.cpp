@@ -160,6 +160,11 @@ TEST_CASE("rheology: the store has the model and, per solids content, value, sd,
   CHECK(get(ps, "paste_rheology.cw_75.yield_stress").value == 137.97);
   CHECK(get(ps, "paste_rheology.cw_75.yield_stress").provenance == lab::Provenance::measured);
   CHECK(get(ps, "paste_rheology.model.curve").text == "published_4_19");
+  // The band: the shape parameter at -1 / +1 sd (b larger: a thinner 72.5 % paste).
+  const Model band = model(Family::exponential, 0.44 + 0.09);
+  CHECK(get(ps, "paste_rheology.cw_72_5.plus_sd.yield_stress").value == doctest::Approx(yield_stress(band, 0.725)));
+  CHECK(get(ps, "paste_rheology.cw_72_5.plus_sd.plastic_viscosity").value == doctest::Approx(plastic_viscosity(band, 0.725)));
+  CHECK(get(ps, "paste_rheology.cw_72_5.minus_sd.yield_stress").value > t72.value);
   CHECK(get(ps, "paste_rheology.cw_70.density").value == doctest::Approx(1738.85).epsilon(1e-5));
   ShapeSource cal;
   cal.calibrated = true, cal.case_id = 2, cal.record = "rheology_calibration.toml";

@@ -33,6 +33,14 @@ method = "model exponential, shape parameter at its prior (prior)"
 value = 0.202
 [paste_rheology.cw_72_5.density]
 value = 1789.4
+[paste_rheology.cw_72_5.minus_sd.yield_stress]
+value = 57.0
+[paste_rheology.cw_72_5.minus_sd.plastic_viscosity]
+value = 0.26
+[paste_rheology.cw_72_5.plus_sd.yield_stress]
+value = 37.0
+[paste_rheology.cw_72_5.plus_sd.plastic_viscosity]
+value = 0.16
 [paste_rheology.cw_70.solids_fraction]
 value = 0.7
 )STORE";
@@ -85,6 +93,12 @@ TEST_CASE("fluid scene: rheology_from takes the store's values at the scene's so
   CHECK(s.fluid[0].fluid.plastic_viscosity == 0.202);
   CHECK(s.fluid[0].fluid.density == 1789.4);
   CHECK(s.fluid[0].solids_fraction == 0.725);
+  // The band: the same paste with the shape parameter at +1 sd (tau_y and eta_B together), one key of the scene.
+  const std::string at = with(tiny_scene(), kFrom, "rheology_from = \"parameters.toml\"\nrheology_at = \"plus_sd\"");
+  const Scene plus = load_in(d, at);
+  CHECK(plus.fluid[0].fluid.yield_stress == 37.0);
+  CHECK(plus.fluid[0].fluid.plastic_viscosity == 0.16);
+  CHECK(plus.fluid[0].fluid.density == 1789.4);
   const auto r = fluid::read_store_rheology((d.path / "parameters.toml").string(), 0.725);
   CHECK(r.key == "paste_rheology.cw_72_5");
   CHECK(r.provenance.find("(prior)") != std::string::npos);
@@ -105,6 +119,11 @@ TEST_CASE("fluid scene: rheology_from errors name the scene, the key and what to
   has(error_of(d, with(base, "rheology = \"bingham\"", "rheology = \"bingham\"\nyield_stress = 69.0")),
       "give either rheology_from or yield_stress");
   has(error_of(d, with(base, "rheology = \"bingham\"", "rheology = \"newtonian\"")), "Bingham");
+  has(error_of(d, with(base, "solids_fraction = 0.725", "solids_fraction = 0.725\nrheology_at = \"high\"")),
+      "rheology_at");
+  has(error_of(d, with(tiny_scene(), kFrom, "density = 1789.4\nyield_stress = 46.0\nplastic_viscosity = 0.2\n"
+                                            "rheology_at = \"plus_sd\"")),
+      "needs rheology_from");
   std::ofstream(d.path / "parameters.toml") << "[paste.yield_stress]\nvalue = 138.0\n";
   const std::string old = error_of(d, base);  // names the store (the file that lacks the model)
   CHECK(old.find("parameters.toml") != std::string::npos);
