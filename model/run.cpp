@@ -98,6 +98,7 @@ RunSummary run_scene(const Scene& scene, const std::filesystem::path& out_dir, c
   if (opt.progress) std::fprintf(stderr, "\n");
   r.stop.rule_at_rest = rule.at_rest;
   r.stop.fired = fired;
+  r.stop.start = rule.start;
   r.stop.time = world.time();
   r.stop.last = census(world, rule);
   out.stop_outcome(r.stop, rule);

@@ -24,8 +24,9 @@ StopRule parse_stop_rule(const Params& root, double end_time) {
   const long hold = t->integer_or("hold", r.hold);
   if (hold < 1 || hold > 1000) t->fail("hold", fmt::format("must be 1..1000 consecutive checks, got {}", hold));
   r.hold = static_cast<int>(hold);
-  if (r.start >= end_time)
-    t->fail("start", fmt::format("{:g} s is not before end_time = {:g} s: the rule could never fire", r.start, end_time));
+  // start >= end_time is allowed (a shortened look with --set end_time=...): the run then ends at end_time
+  // with the not-at-rest warning.
+  (void)end_time;
   if (!r.at_rest)
     for (const char* k : {"speed", "paste_speed", "moving_mass", "check_interval", "start", "hold"})
       if (t->has(k)) t->fail(k, "only with rule = \"at_rest\"");
@@ -73,6 +74,10 @@ std::string StopOutcome::line() const {
                   1e3 * last.moving_mass, last.moving_count, 1e3 * last.in_flight_mass, last.max_speed);
   if (!rule_at_rest) return fmt::format("stop: end_time {:g} s (no [stop] rule); {}\n", time, moving);
   if (fired) return fmt::format("stop: at rest at t = {:.4g} s; {}\n", time, moving);
+  if (last.moving_mass <= 0.0 || time < start)
+    return fmt::format("WARNING: end_time {:g} s reached before the [stop] rule could fire (it checks from t = {:g} s "
+                       "on): {}. Not a finished pour\n",
+                       time, start, moving);
   return fmt::format("WARNING: end_time {:g} s reached before the rock came to rest: {}. Raise end_time or check the "
                      "scene; the maps will refuse this state\n",
                      time, moving);

@@ -73,6 +73,7 @@ class RestMonitor {
 struct StopOutcome {
   bool rule_at_rest = false;   // the scene asked for the at-rest rule
   bool fired = false;          // the rule ended the run before end_time
+  double start = 0.0;          // s, the rule's start (a run shorter than it cannot fire)
   double time = 0.0;           // s, the end of the run
   MotionCensus last;           // census at the end of the run
   std::string line() const;    // one line for `pastemix run` (a warning when the rule did not fire)
