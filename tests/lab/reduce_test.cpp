@@ -66,7 +66,7 @@ TEST_CASE("reduce: every thesis step runs and yields the acceptance parameters")
   CHECK(gap_warned);
 }
 
-TEST_CASE("reduce: a rheology calibration record sets the model; one outside the prior is an error naming it") {
+TEST_CASE("reduce: a rheology calibration record sets the model, one outside the prior is an error naming it") {
   const fs::path dir = fresh_dir("rheo_record");
   fs::create_directories(dir);
   const std::string rec = (dir / "cal.toml").string();

@@ -63,7 +63,7 @@ RheologyCalOptions tiny_options(const std::string& store, const std::string& out
 
 }  // namespace
 
-TEST_CASE("calibrate rheology: the quadratic surrogate finds an exact parabola's vertex; sd from spread/curvature") {
+TEST_CASE("calibrate rheology: the quadratic surrogate finds an exact parabola's vertex, sd from spread over curvature") {
   const std::vector<double> p{0, 1, 2, 3, 4};
   std::vector<double> J, se(5, 0.1);
   for (double x : p) J.push_back(3.0 + 2.0 * (x - 1.3) * (x - 1.3));
@@ -80,7 +80,7 @@ TEST_CASE("calibrate rheology: the quadratic surrogate finds an exact parabola's
   CHECK(layer_objective({2, 2, 3}, {1, 2, 3}) == doctest::Approx(1.0 / 3.0));
 }
 
-TEST_CASE("calibrate rheology: a synthetic target made at b = 0.40 is recovered within 1 sd; a rerun computes nothing") {
+TEST_CASE("calibrate rheology: a synthetic target made at b = 0.40 is recovered within 1 sd and a rerun computes nothing") {
   const std::string store = write_store();
   const model::SceneDoc base = tiny(store);
   // The target: the seed-mean per-layer rock of runs at the known value (the same seeds as the calibration).

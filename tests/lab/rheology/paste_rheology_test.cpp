@@ -66,7 +66,7 @@ TEST_CASE("rheology: each family gives back its anchor exactly, at every shape o
   }
 }
 
-TEST_CASE("rheology: solids volume fraction and the mixture rule against hand values; the density gap is air") {
+TEST_CASE("rheology: solids volume fraction and the mixture rule against hand values, and the density gap as air") {
   const Anchor a = thesis_anchor();
   // phi = (C/2710) / (C/2710 + (1-C)/1000): 75 % -> 0.52539..., rho_mix = 1 / (0.75/2710 + 0.25/1000).
   CHECK(solids_volume_fraction(a, 0.75) == doctest::Approx((0.75 / 2710) / (0.75 / 2710 + 0.25 / 1000)).epsilon(1e-14));
@@ -175,7 +175,7 @@ TEST_CASE("rheology: the store has the model and, per solids content, value, sd,
   CHECK(solids_key(0.7) == "cw_70");
 }
 
-TEST_CASE("rheology: the calibration record round-trips; a malformed one names the file and key") {
+TEST_CASE("rheology: the calibration record round-trips and a malformed one names the file and key") {
   const auto dir = std::filesystem::temp_directory_path() / fmt::format("pastemix_rheo_{}", static_cast<long>(::getpid()));
   std::filesystem::create_directories(dir);
   Calibration c;
