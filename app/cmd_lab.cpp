@@ -220,14 +220,20 @@ void add_reduce(CLI::App& lab) {
                                            "and one PNG per mixing case. Steps:" + steps);
   struct Opts {
     std::string dir, out = "out/lab";
+    lab::ReduceOptions options;
   };
   auto o = std::make_shared<Opts>();
   cmd->add_option("DIR", o->dir, "dataset folder with manifest.toml (e.g. datasets/thesis)")->required();
   cmd->add_option("--out", o->out, "output folder")->capture_default_str();
+  cmd->add_option("--rheology-calibration", o->options.rheology_calibration,
+                  "record of `pastemix calibrate rheology` (default: the paste-rheology model at its prior)");
   cmd->callback([o] {
-    const lab::ReduceResult r = lab::reduce(o->dir);  // reads and checks every input before writing anything
-    lab::RunInfo info{lab::software_version(), fmt::format("pastemix lab reduce {} --out {}", o->dir, o->out),
-                      lab::utc_now()};
+    // Reads and checks every input before writing anything.
+    const lab::ReduceResult r = lab::reduce(o->dir, o->options);
+    std::string command = fmt::format("pastemix lab reduce {} --out {}", o->dir, o->out);
+    if (!o->options.rheology_calibration.empty())
+      command += " --rheology-calibration " + o->options.rheology_calibration;
+    lab::RunInfo info{lab::software_version(), command, lab::utc_now()};
     const auto written = lab::write_reduce_outputs(r, o->out, info);
     print_parameters(r.parameters);
     if (r.block_cut)

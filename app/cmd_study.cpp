@@ -2,7 +2,8 @@
 // `pastemix sweep SCENE.toml --vary dt|psd_cut|youngs_modulus --qoi NAME [--values ...] [--levels N]
 //  [--tol REL] [--seeds N] [--material NAME] [--set key=value ...] [--out DIR]`: speed against error
 // (app/study/sweep.h); `pastemix calibrate rolling-resistance SCENE.toml --target DEG --bracket LO HI ...`
-// (app/study/calibrate.h).
+// (app/study/calibrate.h); `pastemix calibrate rheology --case 2 ...` (app/study/calibrate_rheology.h).
+#include <filesystem>
 #include <memory>
 
 #include <fmt/format.h>
@@ -10,6 +11,12 @@
 #include "app/commands.h"
 #include "base/stats.h"
 #include "app/study/calibrate.h"
+#include "app/study/calibrate_rheology.h"
+#include "base/error.h"
+#include "base/params.h"
+#include "lab/reduce.h"
+#include "lab/reduce_outputs.h"
+#include "lab/run_info.h"
 #include "app/study/qoi.h"
 #include "app/study/sweep.h"
 
@@ -23,6 +30,81 @@ model::SceneDoc scene_doc(const std::string& scene, const std::string& overrides
     for (const auto& a : model::read_override_file(overrides)) d.apply(a);
   for (const auto& a : sets) d.apply(a);
   return d;
+}
+
+// Rewrites the parameter store (parameters.toml, lab.h5 beside it) with the calibration record: `lab reduce`
+// of the store's own dataset with --rheology-calibration, so the store is never edited by hand.
+void write_store(const std::string& store, std::string dataset, const std::string& record) {
+  if (dataset.empty()) {
+    const Params root = Params::parse_file(store);
+    dataset = root.table("reduce").string("dataset");  // not finish()ed: only this key is read
+  }
+  std::string out = std::filesystem::path(store).parent_path().string();
+  if (out.empty()) out = ".";
+  lab::ReduceOptions ro;
+  ro.rheology_calibration = record;
+  const lab::ReduceResult r = lab::reduce(dataset, ro);
+  const std::string cmd = fmt::format("pastemix lab reduce {} --out {} --rheology-calibration {}", dataset, out, record);
+  lab::write_reduce_outputs(r, out, {lab::software_version(), cmd, lab::utc_now()});
+  fmt::print("store updated ({}):\n", cmd);
+  for (const auto& p : r.parameters)
+    if (p.key.rfind("paste_rheology.cw_", 0) == 0 &&
+        (p.key.find(".yield_stress") != std::string::npos || p.key.find(".plastic_viscosity") != std::string::npos))
+      fmt::print("  {} = {:.4g} +- {:.2g} {} ({})\n", p.key, p.value, p.sd, p.unit, p.method);
+}
+
+void register_rheology(CLI::App* cal) {
+  struct Opts {
+    study::RheologyCalOptions o;
+    std::string scene, overrides, dataset, out;
+    std::vector<std::string> sets;
+    std::vector<double> target;
+    double layer_thickness = 0.03;
+    bool no_store = false;
+  };
+  auto c = std::make_shared<Opts>();
+  CLI::App* r = cal->add_subcommand("rheology", "the paste-rheology model's shape parameter from a mixing case's "
+                                                "per-layer rock mass (docs/rheology_protocol.md)");
+  r->add_option("--case", c->o.case_id, "mixing case (the protocol: 2)")->required();
+  r->add_option("--family", c->o.family, "exponential | packing (default: the store's)");
+  r->add_option("--seeds", c->o.seeds, "seeds per point, the same at every point (default 3)");
+  r->add_option("--jobs", c->o.jobs, "runs at once, one thread each (default 1)");
+  r->add_option("--points", c->o.points, "initial points across the prior range (default 5)");
+  r->add_option("--refine", c->o.refine, "refinement rounds around the surrogate's minimum (default 1)");
+  r->add_option("--values", c->o.values, "initial points (replace the grid)");
+  r->add_option("--scene", c->scene, "scene (default datasets/scenes/mixing_case<N>.toml)");
+  r->add_option("--overrides", c->overrides, "file of key.path = value lines, applied before --set");
+  r->add_option("--set", c->sets, "scene override key.path=value");
+  r->add_option("--params", c->o.store, "the parameter store (default out/lab/parameters.toml)");
+  r->add_option("--lab-h5", c->o.lab_h5, "lab.h5 with the case's grid (default out/lab/lab.h5)");
+  r->add_option("--out", c->out, "output folder (default out/calibrate/rheology_case<N>); runs/ keeps every run");
+  r->add_option("--target-layers", c->target, "per-layer rock target in kg, 3 values (synthetic tests; default the lab's)")
+      ->expected(3)->delimiter(',');
+  r->add_option("--layer-thickness", c->layer_thickness, "grid layer thickness, m (default 0.03, the lab's)");
+  r->add_option("--eta-factor", c->o.eta_factor, "eta_B x this at every point (sensitivity, default 1)");
+  r->add_flag("--no-store", c->no_store, "write the record but leave the store as it is");
+  r->add_option("--dataset", c->dataset, "dataset for the store rewrite (default: the store's [reduce] dataset)");
+  r->add_flag("--quiet", c->o.quiet, "no per-run lines");
+  r->callback([c] {
+    auto& o = c->o;
+    const std::string scene = c->scene.empty() ? fmt::format("datasets/scenes/mixing_case{}.toml", o.case_id) : c->scene;
+    o.out = c->out.empty() ? fmt::format("out/calibrate/rheology_case{}", o.case_id) : c->out;
+    if (!c->target.empty()) o.target_layers = std::array<double, 3>{c->target[0], c->target[1], c->target[2]};
+    if (!(c->layer_thickness > 0.0)) throw InputError("--layer-thickness", 0, "", "must be positive (m)");
+    o.layout.layer_thickness = c->layer_thickness;
+    const model::SceneDoc base = scene_doc(scene, c->overrides, c->sets);
+    const auto res = study::calibrate_rheology(base, o);
+    std::string command = fmt::format("pastemix calibrate rheology --case {} --family {} --seeds {} --scene {} --out {}",
+                                      o.case_id, lab::rheology::to_string(res.model.family), o.seeds, scene,
+                                      o.out.string());
+    if (o.eta_factor != 1.0) command += fmt::format(" --eta-factor {:g}", o.eta_factor);
+    const std::string record = study::write_calibration_outputs(res, o, command);
+    fmt::print("{}", study::calibration_table(res, o));
+    fmt::print("wrote {0}/table.txt, {0}/points.csv, {0}/objective.png{1}\n", o.out.string(),
+               record.empty() ? "" : ", " + record);
+    if (!res.fit.ok) throw RuntimeFailure("calibrate rheology: no result: " + res.fit.why);
+    if (!c->no_store) write_store(o.store.string(), c->dataset, record);
+  });
 }
 
 }  // namespace
@@ -108,6 +190,7 @@ void register_study_commands(CLI::App& app) {
                "{:.2f} deg{}\n", r.mu, r.best.angle, r.best.sd, c->seeds, std::abs(r.best.angle - c->target),
                r.converged ? "" : " (NOT within --tol-deg: more evaluations or seeds needed)");
   });
+  register_rheology(cal);
 }
 
 }  // namespace pastemix::app

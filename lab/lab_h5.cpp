@@ -86,6 +86,7 @@ void write_lab_h5(const std::filesystem::path& path, const ReduceResult& r, cons
     h5.attribute(g, "method", p.method);
     h5.attribute(g, "source", p.source);
     if (!p.text.empty()) h5.attribute(g, "text", p.text);
+    if (!p.note.empty()) h5.attribute(g, "note", p.note);  // e.g. the "at-rest effective" label of paste_rheology.*
     if (!p.trials.empty()) h5.write(g + "/trials", p.trials);
   }
   if (r.block_cut) write_block_cut(h5, *r.block_cut);

@@ -4,7 +4,8 @@
 // Layout (every grid is float64 [4][3][3] row-major, index [i-1][j-1][k-1]: i = 1..4 along the 20 cm side,
 // j = 1..3 along the 16.5 cm side, k = layer 1..3 from the top; C and S are fractions 0..1, NaN = undefined):
 //   /                       attrs software, command, created, dataset, manifest, grid_layout
-//   /parameters/<key>/      attrs value, sd, n, unit, provenance, method, source; dataset trials (if any)
+//   /parameters/<key>/      attrs value, sd, n, unit, provenance, method, source (text, note if any); dataset
+//                           trials (if any); paste_rheology.* (lab/rheology/paste_rheology.h) among them
 //   /block_cut/case_<n>/    C, S, S_raw, flag (int32, 0 value, 1 capped, 2 no rock, 3 no K), M_wr, M_paste_dried,
 //                           C_printed, S_printed, line (source line); attrs K (NaN if unknown), K_source
 //   /block_cut/case_<n>/corrected/  C, S, S_raw, flag, M_paste_dried, applied (int32, 1 = Table 3.3 row)

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "lab/reduce.h"
 
+#include <algorithm>
 #include <set>
 
 #include <fmt/format.h>
@@ -13,6 +14,7 @@
 #include "lab/ingest/rebound.h"
 #include "lab/ingest/slump.h"
 #include "lab/ingest/tilt.h"
+#include "lab/rheology/reduce_rheology.h"
 
 namespace pastemix::lab {
 
@@ -137,13 +139,16 @@ const std::vector<ReduceStep>& reduce_steps() {
       {"mixing_program", "mixing-test programme -> per-case PSD, fall height, paste", run_mixing_program},
       {"block_cut", "cut blocks -> C and S grids per case (+ Table 3.3 correction)", run_block_cut},
       {"drag_curve", "settling spheres -> fitted Cd(Re') drag curve", run_drag_curve},
+      {"paste_rheology", "the 75 % paste + a one-parameter model -> rheology at every case's solids content",
+       rheology::run_paste_rheology},
   };
   return steps;
 }
 
-ReduceResult reduce(const std::filesystem::path& dir) {
+ReduceResult reduce(const std::filesystem::path& dir, const ReduceOptions& options) {
   const Manifest m = Manifest::load(dir);
   ReduceResult r;
+  r.options = options;
   r.dataset_dir = dir.string();
   r.manifest = m.path().string();
   const Params& root = m.root();
@@ -166,6 +171,10 @@ ReduceResult reduce(const std::filesystem::path& dir) {
   for (const auto& p : r.parameters)
     if (!keys.insert(p.key).second)
       throw InputError(m.path().string(), 0, "", fmt::format("two steps produce the parameter '{}'", p.key));
+  if (!options.rheology_calibration.empty() &&
+      std::find(r.steps_run.begin(), r.steps_run.end(), "paste_rheology") == r.steps_run.end())
+    throw InputError(m.path().string(), 0, "paste_rheology",
+                     "a rheology calibration was given but the manifest has no [paste_rheology] table");
   if (r.steps_run.empty())
     throw InputError(m.path().string(), 0, "", "the manifest names no step (expected tables such as [slump])");
   return r;

@@ -31,7 +31,15 @@ struct NamedSieve {
   SieveResult result;
 };
 
+// Options of `lab reduce` beyond the manifest.
+struct ReduceOptions {
+  // A paste-rheology calibration record (`pastemix calibrate rheology`); empty: the model's shape parameter
+  // is its prior (lab/rheology/paste_rheology.h).
+  std::string rheology_calibration;
+};
+
 struct ReduceResult {
+  ReduceOptions options;
   std::string dataset_dir;    // as given
   std::string manifest;       // path of manifest.toml
   std::string dataset_name;   // [dataset] name
@@ -54,6 +62,6 @@ struct ReduceStep {
 const std::vector<ReduceStep>& reduce_steps();
 
 // Reads DIR/manifest.toml and runs every step whose table is present. Throws InputError on any bad input.
-ReduceResult reduce(const std::filesystem::path& dir);
+ReduceResult reduce(const std::filesystem::path& dir, const ReduceOptions& options = {});
 
 }  // namespace pastemix::lab

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "model/fluid/fluid_scene.h"
 
+#include <cmath>
 #include <filesystem>
 
 #include <fmt/format.h>
@@ -45,6 +46,37 @@ drag::DragCurve read_curve(const Params& f, const std::string& scene_path, const
   return c;
 }
 
+// [[fluid]] rheology_from = STORE: tau_y, eta_B and the density at the region's solids content, read from the
+// lab parameter store (never numbers typed into the scene), with the drag curve the store's eta_B belongs to.
+void read_rheology_from(const Params& f, const std::string& scene_path, FluidRegion& r) {
+  if (r.rheology != "bingham") f.fail("rheology_from", "a store's paste rheology is Bingham: set rheology = \"bingham\"");
+  for (const char* key : {"yield_stress", "plastic_viscosity", "density", "viscosity"})
+    if (f.has(key)) f.fail(key, fmt::format("give either rheology_from or {}, not both", key));
+  if (!f.has("solids_fraction")) f.fail("rheology_from", "needs solids_fraction (which of the store's pastes)");
+  r.solids_fraction = f.number("solids_fraction", Range::fraction);
+  std::filesystem::path file = f.string("rheology_from");
+  if (file.is_relative()) file = std::filesystem::path(scene_path).parent_path() / file;
+  if (!std::filesystem::exists(file))
+    f.fail("rheology_from", fmt::format("no such parameter store: {} (run `pastemix lab reduce datasets/thesis --out "
+                                        "out/lab` first)",
+                                        file.string()));
+  StoreRheology s;
+  try {
+    s = read_store_rheology(file.string(), r.solids_fraction,
+                            f.choice_or("rheology_at", {"value", "minus_sd", "plus_sd"}, "value"));
+  } catch (const InputError& e) {  // name the scene's key too: the fix may be in either file
+    f.fail("rheology_from", e.what());
+  }
+  r.fluid.density = s.density;
+  r.fluid.yield_stress = s.yield_stress;
+  r.fluid.plastic_viscosity = s.plastic_viscosity;
+  if (!f.has("curve") && !f.has("curve_from")) f.fail("curve", fmt::format("name the drag curve (the store's eta_B belongs to {})", s.curve));
+  r.curve = read_curve(f, scene_path, "");
+  if (s.curve != r.curve.info().name)
+    f.fail("curve", fmt::format("the store's eta_B ({}) belongs to drag curve {}, the scene uses {}", s.key,
+                                s.curve, r.curve.info().name));
+}
+
 }  // namespace
 
 drag::DragCurve read_chosen_curve(const std::string& parameters_toml, const std::string& wanted) {
@@ -64,6 +96,37 @@ drag::DragCurve read_chosen_curve(const std::string& parameters_toml, const std:
   }
   // Not finish()ed: the file holds every lab parameter; only the curve is read here.
   return c;
+}
+
+StoreRheology read_store_rheology(const std::string& file, double solids_fraction, const std::string& at) {
+  const Params root = Params::parse_file(file);
+  const auto pr = root.optional_table("paste_rheology");
+  if (!pr)
+    throw InputError(file, 0, "paste_rheology",
+                     "missing: this store has no paste-rheology model; rerun `pastemix lab reduce datasets/thesis "
+                     "--out out/lab`");
+  std::string known;
+  for (const std::string& key : pr->keys()) {
+    if (key.rfind("cw_", 0) != 0) continue;
+    const Params t = pr->table(key);
+    const double cw = t.table("solids_fraction").number("value", Range::fraction);
+    known += fmt::format("{}{:g}", known.empty() ? "" : ", ", cw);
+    if (std::abs(cw - solids_fraction) > 1e-9) continue;
+    StoreRheology s;
+    s.key = "paste_rheology." + key;
+    const Params band = at == "value" ? t : t.table(at);  // minus_sd / plus_sd: the protocol's band
+    s.yield_stress = band.table("yield_stress").number("value", Range::non_negative);
+    s.plastic_viscosity = band.table("plastic_viscosity").number("value", Range::positive);
+    s.density = t.table("density").number("value", Range::positive);
+    s.provenance = t.table("yield_stress").string("method");
+    const Params model = pr->table("model");
+    s.curve = model.table("curve").string("text");
+    return s;
+  }
+  throw InputError(file, 0, "paste_rheology",
+                   fmt::format("no entry for solids content {:g} (the store has {}): the store's solids contents are "
+                               "those of the mixing programme",
+                               solids_fraction, known.empty() ? "none" : known));
 }
 
 LabPaste read_lab_paste(const std::string& parameters_toml, const std::string& curve_name) {
@@ -105,19 +168,23 @@ std::vector<FluidRegion> read_fluid_regions(const Params& root, const std::strin
     r.z_bottom = f.number("bottom");
     r.z_surface0 = f.number("surface");
     if (!(r.z_surface0 > r.z_bottom)) f.fail("surface", "the free surface must lie above the bottom");
-    r.fluid.density = f.number("density", Range::positive);
     r.rheology = f.choice("rheology", {"newtonian", "bingham"});
-    if (r.rheology == "newtonian") {
+    if (f.has("rheology_at") && !f.has("rheology_from")) f.fail("rheology_at", "needs rheology_from");
+    if (f.has("rheology_from")) {
+      read_rheology_from(f, scene_path, r);
+    } else if (r.rheology == "newtonian") {
+      r.fluid.density = f.number("density", Range::positive);
       r.fluid.plastic_viscosity = f.number("viscosity", Range::positive);
       r.curve = read_curve(f, scene_path, "stokes");
     } else {
+      r.fluid.density = f.number("density", Range::positive);
       r.fluid.yield_stress = f.number("yield_stress", Range::non_negative);
       r.fluid.plastic_viscosity = f.number("plastic_viscosity", Range::positive);
       if (!f.has("curve") && !f.has("curve_from"))
         f.fail("curve", "a bingham fluid needs curve = NAME (with coefficients) or curve_from = FILE");
       r.curve = read_curve(f, scene_path, "");
     }
-    r.solids_fraction = f.number_or("solids_fraction", 0.0, Range::fraction);
+    if (!f.has("rheology_from")) r.solids_fraction = f.number_or("solids_fraction", 0.0, Range::fraction);
     r.buoyancy = f.boolean_or("buoyancy", true);
     r.yield_term = f.boolean_or("yield_term", true);
     r.partial_submergence = f.boolean_or("partial_submergence", true);

@@ -14,6 +14,11 @@
 //   curve = "power_blend"  coefficients = [k, a, b, c, n]    # or curve = "published_4_19" / "stokes", or
 //   curve_from = "parameters.toml"       # lab reduce output (relative to the scene file): drag_curve.chosen
 //   solids_fraction = 0.75               # -, optional (0), recorded for the analysis maps
+//   rheology_from = "../../out/lab/parameters.toml"   # instead of density, yield_stress, plastic_viscosity:
+//                                        # the store's paste_rheology.cw_<C_w> values for this solids_fraction
+//                                        # (required then), written by `pastemix lab reduce`; `curve` must be
+//                                        # the store's paste_rheology.model.curve (the curve eta_B belongs to)
+//   rheology_at = "value"                # or "minus_sd" / "plus_sd": the store's band (shape parameter -/+ 1 sd)
 //   buoyancy = true  yield_term = true  partial_submergence = true  surface_rise = true   # switches
 //   collective = "bearing_capacity"      # or "none" (default): touching spheres share the paste's bearing
 //                                        # capacity (collective.h); needs yield_stress > 0
@@ -51,5 +56,20 @@ struct LabPaste {
   std::optional<double> eta_B, ball_restitution, ball_friction, ball_density;
 };
 LabPaste read_lab_paste(const std::string& parameters_toml, const std::string& curve_name = "");
+
+// The paste rheology a store (`lab reduce`, lab/rheology/paste_rheology.h) gives at one solids content:
+// paste_rheology.cw_<...>.{yield_stress, plastic_viscosity, density}, matched by solids_fraction (1e-9), and
+// paste_rheology.model.curve. InputError naming the file when the model or that solids content is missing.
+struct StoreRheology {
+  std::string key;                // paste_rheology.cw_72_5
+  double yield_stress = 0.0;      // Pa
+  double plastic_viscosity = 0.0; // Pa.s
+  double density = 0.0;           // kg/m3
+  std::string curve;              // the drag curve eta_B belongs to
+  std::string provenance;         // "model exponential, shape parameter calibrated on case 2" or "... (prior)"
+};
+// `at`: "value", or "minus_sd" / "plus_sd" (tau_y and eta_B with the shape parameter at -1 / +1 sd: the band).
+StoreRheology read_store_rheology(const std::string& parameters_toml, double solids_fraction,
+                                  const std::string& at = "value");
 
 }  // namespace pastemix::model::fluid

@@ -11,6 +11,7 @@
 #include <doctest/doctest.h>
 #include <fmt/format.h>
 
+#include "base/error.h"
 #include "base/h5.h"
 #include "base/params.h"
 #include "tests/run_command.h"
@@ -29,7 +30,8 @@ fs::path fresh_dir(const std::string& name) {
 
 TEST_CASE("reduce: every thesis step runs and yields the acceptance parameters") {
   const ReduceResult r = reduce(test::source_path("datasets/thesis"));
-  CHECK(r.steps_run == std::vector<std::string>{"slump", "rebound", "tilt", "mixing_program", "block_cut", "drag_curve"});
+  CHECK(r.steps_run == std::vector<std::string>{"slump", "rebound", "tilt", "mixing_program", "block_cut", "drag_curve",
+                                               "paste_rheology"});
   auto value = [&](const std::string& key) {
     for (const auto& p : r.parameters)
       if (p.key == key) return p.value;
@@ -53,6 +55,43 @@ TEST_CASE("reduce: every thesis step runs and yields the acceptance parameters")
   CHECK(chosen);
   CHECK(value("drag_curve.yield_blend.c") > 0.0);
   CHECK(value("drag_curve.yield_blend.q") > 0.0);  // drag falls with the yield number at a given Re'
+  // The unmeasured pastes: every solids content of the programme, the 75 % one the anchor itself (issue 15).
+  CHECK(value("paste_rheology.cw_75.yield_stress") == value("paste.yield_stress"));
+  CHECK(value("paste_rheology.cw_75.density") == value("paste.density"));
+  CHECK(value("paste_rheology.cw_72_5.yield_stress") < value("paste.yield_stress"));
+  CHECK(value("paste_rheology.cw_70.yield_stress") < value("paste_rheology.cw_72_5.yield_stress"));
+  CHECK(value("paste_rheology.model.mixture_density_at_anchor") == doctest::Approx(1898.4).epsilon(1e-4));
+  bool gap_warned = false;
+  for (const auto& w : r.warnings) gap_warned = gap_warned || w.message.find("gap 55.4 kg/m3") != std::string::npos;
+  CHECK(gap_warned);
+}
+
+TEST_CASE("reduce: a rheology calibration record sets the model, one outside the prior is an error naming it") {
+  const fs::path dir = fresh_dir("rheo_record");
+  fs::create_directories(dir);
+  const std::string rec = (dir / "cal.toml").string();
+  std::ofstream(rec) << "[rheology_calibration]\nfamily = \"exponential\"\nshape = 0.35\nsd = 0.02\ncase = 2\n";
+  ReduceOptions o;
+  o.rheology_calibration = rec;
+  const ReduceResult r = reduce(test::source_path("datasets/thesis"), o);
+  bool seen = false;
+  for (const auto& p : r.parameters)
+    if (p.key == "paste_rheology.cw_72_5.yield_stress") {
+      seen = true;
+      CHECK(p.provenance == Provenance::calibrated);
+      CHECK(p.method == "model exponential, shape parameter calibrated on case 2");
+      CHECK(p.value == doctest::Approx(137.97 * std::exp(-2.5 * 0.35)).epsilon(1e-3));
+    }
+  CHECK(seen);
+  std::ofstream(rec) << "[rheology_calibration]\nfamily = \"exponential\"\nshape = 0.75\nsd = 0.02\ncase = 2\n";
+  try {
+    reduce(test::source_path("datasets/thesis"), o);
+    FAIL("no error");
+  } catch (const InputError& e) {
+    CHECK(std::string(e.what()).find("cal.toml") != std::string::npos);
+    CHECK(std::string(e.what()).find("exponential.b = 0.75") != std::string::npos);
+  }
+  fs::remove_all(dir);
 }
 
 TEST_CASE("reduce CLI: writes parameters.toml (valid TOML), lab.h5 (4x3x3 grids) and one PNG per case") {
