@@ -23,6 +23,7 @@
 #include "analysis/pile/repose_angle.h"
 #include "analysis/plot.h"
 #include "analysis/score/lab_case.h"
+#include "analysis/score/realization_check.h"
 #include "analysis/score/score.h"
 #include "app/commands.h"
 #include "base/error.h"
@@ -228,11 +229,13 @@ void run_score(const CommonOpts& o) {
     lab.K = *o.K;
     lab.K_source = "command line --K (the lab grid's S classes keep the lab's own K)";
   }
+  std::vector<ResultSnapshot> results;
+  for (const auto& path : o.results) results.push_back(read_result(path, over));
+  analysis::check_realizations(lc, results);
   std::vector<MixingMap> maps;
   std::vector<Realization> reals;
-  for (const auto& path : o.results) {
-    const ResultSnapshot r = read_result(path, over);
-    for (const auto& n : r.notes) fmt::print("note: {}: {}\n", path, n);
+  for (const auto& r : results) {
+    for (const auto& n : r.notes) fmt::print("note: {}: {}\n", r.path, n);
     const Motion motion = checked_motion(r, o);
     const MixingInputs in = inputs_for(L, r, K, o);
     maps.push_back(mixing_map(in, ParticleView{r.position, r.radius, r.density}));
@@ -244,7 +247,7 @@ void run_score(const CommonOpts& o) {
   const fs::path out = o.out;
   StagedOutput staged;
   const fs::path csv = staged.path(out / "score.csv");
-  { std::ofstream(csv) << score_csv(s); }
+  write_file_synced(csv, score_csv(s));
   staged.write_text(out / "score.toml",
                     score_toml(s, lab::software_version(), command_line("score", o), lab::utc_now(), o.lab_h5));
   const std::string title = fmt::format("Mixing case {}: lab vs model ({} realization{}){}", s.case_id,

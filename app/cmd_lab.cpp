@@ -134,6 +134,9 @@ std::map<int, lab::KInput> parse_K(const std::vector<std::string>& items) {
     if (!value || !idv || *idv != static_cast<double>(id) || id < 1)
       throw InputError("--K", 0, "", fmt::format("expected CASE=VALUE (kg/m3), e.g. 2=3570; got '{}'", s));
     if (!(*value > 0.0)) throw InputError("--K", 0, "", fmt::format("K must be positive, got '{}'", s));
+    if (K.count(static_cast<int>(id)))
+      throw InputError("--K", 0, "", fmt::format("case {} given twice ({} and {} kg/m3): give each case once", id,
+                                                 K.at(static_cast<int>(id)).value, *value));
     K[static_cast<int>(id)] = lab::KInput{*value, "command line --K"};
   }
   return K;
@@ -160,6 +163,21 @@ void add_block_cut(CLI::App& lab) {
   });
 }
 
+// --generate makes every particle of the mass: 1e12 g once took 2 GB in 8 s before anything was printed.
+// The expected count (mass fraction / mass of a sphere at the interval's mid diameter) is checked first.
+void check_generate_size(const Psd& psd, double mass_kg, double density) {
+  constexpr double max_particles = 1e7;  // 10 million spheres: ~80 MB of diameters, seconds to make
+  double expected = 0.0;
+  for (const auto& iv : psd.intervals) {
+    const double d = 0.5 * (iv.d_min + iv.d_max);
+    expected += iv.mass_fraction * mass_kg / (3.14159265358979323846 / 6.0 * density * d * d * d);
+  }
+  if (!(expected <= max_particles))
+    throw InputError("--generate", 0, "",
+                     fmt::format("{:g} g would make about {:.3g} particles (at most {:g}); give a smaller mass",
+                                 mass_kg * 1e3, expected, max_particles));
+}
+
 void add_sieve(CLI::App& lab) {
   auto* cmd = lab.add_subcommand("sieve", "Sieve masses -> PSD (intervals, cumulative passing), optional sizes");
   struct Opts {
@@ -173,10 +191,16 @@ void add_sieve(CLI::App& lab) {
   cmd->add_option("--generate", o->mass_g, "also generate particle sizes for this total mass (g)");
   cmd->add_option("--density", o->density, "particle density for --generate (kg/m3)")->capture_default_str();
   cmd->add_option("--seed", o->seed, "seed for --generate")->capture_default_str();
-  cmd->callback([o] {
+  cmd->callback([o, cmd] {
     const CsvTable t = CsvTable::read(o->file);
-    if (o->cut_mm < 0.0) throw InputError("--cut", 0, "", "must be >= 0 mm");
+    if (!(o->cut_mm >= 0.0) || !std::isfinite(o->cut_mm)) throw InputError("--cut", 0, "", "must be a number >= 0 mm");
+    const bool generate = cmd->count("--generate") > 0;
+    if (generate && !(o->mass_g > 0.0 && std::isfinite(o->mass_g)))
+      throw InputError("--generate", 0, "", fmt::format("must be a positive mass in g, got {}", o->mass_g));
+    if (!(o->density > 0.0 && std::isfinite(o->density)))
+      throw InputError("--density", 0, "", fmt::format("must be a positive density in kg/m3, got {}", o->density));
     const auto r = lab::ingest_sieve(t, lab::ColumnUnits::defaults(lab::sieve_columns()), o->cut_mm * 1e-3);
+    if (generate) check_generate_size(r.psd, o->mass_g * 1e-3, o->density);
     fmt::print("{}: total {:.2f} g, pan {:.2f} %{}\n", o->file, r.total_mass * 1e3, 100 * r.pan_fraction,
                r.cut > 0 ? fmt::format(", cut at {:g} mm", r.cut * 1e3) : "");
     fmt::print("{:>10} {:>12}\n", "sieve_mm", "passing_%");
@@ -186,8 +210,7 @@ void add_sieve(CLI::App& lab) {
                "fraction");
     for (const auto& iv : r.psd.intervals)
       fmt::print("{:>10g} {:>10g} {:>10.4f}\n", iv.d_min * 1e3, iv.d_max * 1e3, iv.mass_fraction);
-    if (o->mass_g > 0.0) {
-      if (!(o->density > 0.0)) throw InputError("--density", 0, "", "must be positive");
+    if (generate) {
       const auto d = generate_diameters(r.psd, o->mass_g * 1e-3, o->density, o->seed);
       std::vector<double> mass(r.psd.intervals.size(), 0.0);
       double total = 0.0;

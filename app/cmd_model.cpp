@@ -42,6 +42,7 @@ void run_one(const model::Scene& scene, const std::string& out_dir, bool quiet, 
     fmt::print(stderr, "time step {:.3g} s = {:.1f} % of the Rayleigh time of the smallest sphere ({:.3g} s)\n",
                scene.config.dt, 100.0 * scene.config.dt / tr, tr);
   }
+  for (const auto& w : scene.warnings) fmt::print(stderr, "warning: {}\n", w);
   model::RunOptions ro;
   ro.progress = !quiet;
   ro.stem = stem;
@@ -98,7 +99,10 @@ void register_model_commands(CLI::App& app) {
       ->check(CLI::Range(1, 10000));
   run->add_option("--seed", opts->seed, "first seed of the realizations (default: the scene's seed)")
       ->check(CLI::Range(0L, 1L << 62));
-  run->callback([opts] {
+  run->callback([opts, run] {
+    // 0 or a negative count used to mean "all cores" silently.
+    if (run->count("--threads") && opts->threads < 1)
+      throw InputError("--threads", 0, "", fmt::format("expected a thread count >= 1, got {}", opts->threads));
     if (opts->threads > 0) omp_set_num_threads(opts->threads);
     std::vector<std::string> sets;
     if (!opts->overrides.empty()) sets = model::read_override_file(opts->overrides);

@@ -5,6 +5,8 @@
 // could not go on (blow-up, lost particle, no solution), with a diagnosis on stderr.
 #include <cstdio>
 #include <exception>
+#include <filesystem>
+#include <new>
 
 #include <fmt/format.h>
 
@@ -28,6 +30,13 @@ int main(int argc, char** argv) {
     return 2;
   } catch (const pastemix::RuntimeFailure& e) {
     fmt::print(stderr, "failure: {}\n", e.what());
+    return 3;
+  } catch (const std::filesystem::filesystem_error& e) {
+    // A file-system call the command did not wrap: still the environment's problem, with the path.
+    fmt::print(stderr, "error: {}: {}\n", e.path1().string(), e.code().message());
+    return 2;
+  } catch (const std::bad_alloc&) {
+    fmt::print(stderr, "failure: out of memory (the inputs ask for more memory than this machine has)\n");
     return 3;
   } catch (const std::exception& e) {
     fmt::print(stderr, "internal error: {}\n", e.what());

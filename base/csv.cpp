@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "base/error.h"
+#include "base/suggest.h"
 
 namespace pastemix {
 
@@ -100,6 +101,7 @@ std::string trim(std::string s) {
 }  // namespace
 
 CsvTable CsvTable::read(const std::filesystem::path& path) {
+  if (std::filesystem::is_directory(path)) throw InputError(path.string(), 0, "", "is a folder, not a CSV file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path.string(), 0, "", "cannot open file");
   std::ostringstream buffer;
@@ -120,7 +122,7 @@ CsvTable CsvTable::parse(std::string_view text, std::string display_path) {
       throw InputError(table.path_, records.front().line, "", "empty column name in the header");
     for (const auto& seen : table.header_)
       if (seen == name)
-        throw InputError(table.path_, records.front().line, fmt::format("column '{}'", name),
+        throw InputError(table.path_, records.front().line, fmt::format("column '{}'", shown(name)),
                          "duplicate column name in the header");
     table.header_.push_back(name);
   }
@@ -143,10 +145,23 @@ bool CsvTable::has_column(std::string_view name) const {
   return false;
 }
 
+std::string CsvTable::missing_column_hint(std::string_view column) const {
+  // A file saved with ';' (a comma-decimal locale) or tabs reads as one column holding the whole header.
+  if (header_.size() == 1) {
+    for (auto [sep, name] : {std::pair{';', "semicolons"}, std::pair{'\t', "tabs"}})
+      if (header_.front().find(sep) != std::string::npos)
+        return fmt::format(" (the header is one column '{}': the file seems to be separated by {}; pastemix "
+                           "reads comma-separated files with '.' as the decimal point)",
+                           shown(header_.front()), name);
+  }
+  return did_you_mean(column, header_);
+}
+
 void CsvTable::require_columns(const std::vector<std::string>& names) const {
   for (const auto& n : names)
     if (!has_column(n))
-      throw InputError(path_, 1, fmt::format("column '{}'", n), "required column is missing from the header");
+      throw InputError(path_, 1, fmt::format("column '{}'", n),
+                       "required column is missing from the header" + missing_column_hint(n));
 }
 
 void CsvTable::require_only_columns(const std::vector<std::string>& known) const {
@@ -154,15 +169,17 @@ void CsvTable::require_only_columns(const std::vector<std::string>& known) const
     bool ok = false;
     for (const auto& k : known) ok = ok || (k == h);
     if (!ok)
-      throw InputError(path_, 1, fmt::format("column '{}'", h),
-                       fmt::format("unknown column (expected only: {})", fmt::join(known, ", ")));
+      throw InputError(path_, 1, fmt::format("column '{}'", shown(h)),
+                       fmt::format("unknown column{} (expected only: {})", did_you_mean(h, known),
+                                   fmt::join(known, ", ")));
   }
 }
 
 std::size_t CsvTable::index_of(std::string_view column) const {
   for (std::size_t k = 0; k < header_.size(); ++k)
     if (header_[k] == column) return k;
-  throw InputError(path_, 1, fmt::format("column '{}'", column), "required column is missing from the header");
+  throw InputError(path_, 1, fmt::format("column '{}'", column),
+                   "required column is missing from the header" + missing_column_hint(column));
 }
 
 void CsvTable::fail(const Row& row, std::string_view column, const std::string& message) const {
@@ -197,8 +214,8 @@ std::optional<double> CsvTable::optional_number(const Row& row, std::string_view
   const std::string& cell = text(row, column);
   if (cell.empty()) return std::nullopt;
   auto value = parse_finite_double(cell);
-  if (!value) fail(row, column, fmt::format("expected {}, got '{}'", range_words(range), cell));
-  if (!in_range(*value, range)) fail(row, column, fmt::format("expected {}, got '{}'", range_words(range), cell));
+  if (!value) fail(row, column, fmt::format("expected {}, got '{}'", range_words(range), shown(cell)));
+  if (!in_range(*value, range)) fail(row, column, fmt::format("expected {}, got '{}'", range_words(range), shown(cell)));
   return value;
 }
 
@@ -213,7 +230,7 @@ long CsvTable::integer(const Row& row, std::string_view column) const {
   long value = 0;
   auto [end, ec] = std::from_chars(cell.data(), cell.data() + cell.size(), value);
   if (cell.empty() || ec != std::errc() || end != cell.data() + cell.size())
-    fail(row, column, fmt::format("expected an integer, got '{}'", cell));
+    fail(row, column, fmt::format("expected an integer, got '{}'", shown(cell)));
   return value;
 }
 

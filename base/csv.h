@@ -52,6 +52,8 @@ class CsvTable {
 
  private:
   std::size_t index_of(std::string_view column) const;
+  // A hint for a missing column: the separator the file seems to use, or the nearest column name.
+  std::string missing_column_hint(std::string_view column) const;
 
   std::string path_;
   std::vector<std::string> header_;

@@ -16,6 +16,9 @@
 
 namespace pastemix {
 
+// Every failure to write (a full disk, a quota, a file-size limit) is an InputError naming the file and the
+// system's cause: exit 2, an environment problem, never an abort. The file is built in memory and reaches
+// the disk in close().
 class H5Writer {
  public:
   // Creates (truncates) the file.
@@ -35,8 +38,16 @@ class H5Writer {
   void attribute(std::string_view object, std::string_view name, std::int64_t value);
   void attribute(std::string_view object, std::string_view name, std::string_view value);
   void flush();
+  // Writes the file to disk (it is built in memory), syncs and closes it; throws InputError (path and
+  // cause) if the data did not reach the disk. Call it before committing the file: a writer destroyed
+  // without close() writes nothing.
+  void close();
 
  private:
+  template <class Fn>
+  void guard(std::string_view what, Fn&& fn);
+  void write_strings_unguarded(std::string_view path, const std::vector<std::string>& data);
+  void string_attribute(std::string_view object, std::string_view name, std::string_view value);
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

@@ -11,6 +11,7 @@
 #include <toml++/toml.h>
 
 #include "base/error.h"
+#include "base/suggest.h"
 
 namespace pastemix {
 
@@ -20,6 +21,8 @@ struct Params::State {
   std::string path;
   int line = 0;
   mutable std::set<std::string, std::less<>> used;
+  // Every key a consumer asked for, present or not: the names a misspelt key is compared with.
+  mutable std::set<std::string, std::less<>> asked;
   mutable std::vector<std::shared_ptr<State>> children;
 };
 
@@ -45,6 +48,7 @@ Params Params::parse(std::string_view text, std::string display_path) {
 }
 
 Params Params::parse_file(const std::filesystem::path& path) {
+  if (std::filesystem::is_directory(path)) throw InputError(path.string(), 0, "", "is a folder, not a TOML file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path.string(), 0, "", "cannot open file");
   std::ostringstream buffer;
@@ -65,7 +69,10 @@ void Params::fail(std::string_view key, const std::string& message) const {
   throw InputError(state_->path, line ? line : state_->line, fmt::format("key '{}'", key), message);
 }
 
-bool Params::has(std::string_view key) const { return state_->table->contains(key); }
+bool Params::has(std::string_view key) const {
+  state_->asked.emplace(key);
+  return state_->table->contains(key);
+}
 
 std::vector<std::string> Params::keys() const {
   std::vector<std::string> out;
@@ -75,6 +82,7 @@ std::vector<std::string> Params::keys() const {
 
 const toml::node* Params::get(std::string_view key) const {
   const toml::node* n = state_->table->get(key);
+  state_->asked.emplace(key);
   if (n) state_->used.emplace(key);
   return n;
 }
@@ -223,9 +231,12 @@ void Params::ignore(std::string_view key) const { state_->used.emplace(key); }
 
 void Params::finish() const {
   for (auto&& [k, v] : *state_->table) {
-    if (!state_->used.count(k.str()))
-      throw InputError(state_->path, static_cast<int>(v.source().begin.line), fmt::format("key '{}'", k.str()),
-                       "unknown key (nothing reads it; check the spelling and the table it is in)");
+    if (!state_->used.count(k.str())) {
+      const std::vector<std::string> known(state_->asked.begin(), state_->asked.end());
+      throw InputError(state_->path, static_cast<int>(v.source().begin.line), fmt::format("key '{}'", shown(k.str())),
+                       fmt::format("unknown key{} (nothing reads it; check the spelling and the table it is in)",
+                                   did_you_mean(k.str(), known)));
+    }
   }
   for (const auto& child : state_->children) Params(child).finish();
 }

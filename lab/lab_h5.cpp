@@ -110,7 +110,7 @@ void write_lab_h5(const std::filesystem::path& path, const ReduceResult& r, cons
   if (warnings.empty()) warnings.push_back("(none)");
   h5.write_strings("/warnings", warnings);
   h5.write_strings("/inputs", r.inputs);
-  h5.flush();
+  h5.close();
 }
 
 }  // namespace pastemix::lab

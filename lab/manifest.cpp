@@ -28,6 +28,9 @@ ManifestInput Manifest::input(const Params& table, const std::vector<ColumnSpec>
   if (!std::filesystem::is_regular_file(in.path))
     table.fail(file_key, fmt::format("file '{}' not found in the dataset folder {}", in.relative, dir_.string()));
   in.units = ColumnUnits::from_manifest(specs, table.table("units"));
+  // Values a lab cannot have measured are errors (a density in g/cm3 under "kg/m3"); a dataset that really
+  // holds them says so here, for this input only.
+  in.units.set_plausibility_checks(!table.boolean_or("allow_implausible_values", false));
   return in;
 }
 

@@ -42,6 +42,18 @@ std::string toml_string(std::string_view s) {
   return out + "\"";
 }
 
+// Text for a "# ..." comment: every line of it starts with '#', whatever the message holds (a helper's
+// multi-line output once made the file invalid TOML).
+std::string commented(std::string_view s) {
+  std::string out;
+  for (char c : s) {
+    if (c == '\r') continue;
+    out += c;
+    if (c == '\n') out += "#     ";
+  }
+  return out;
+}
+
 // Round-trip precision, trimmed: TOML readers get the exact double, people get short numbers where exact.
 std::string number(double v) {
   if (std::isnan(v)) return "nan";
@@ -64,7 +76,7 @@ void psd_table(std::string& out, const std::string& key, const Psd& psd, const s
     hi.push_back(iv.d_max);
     f.push_back(iv.mass_fraction);
   }
-  out += fmt::format("\n# {}\n[{}]\n", comment, key);
+  out += fmt::format("\n# {}\n[{}]\n", commented(comment), key);
   out += fmt::format("d_min_m = {}\nd_max_m = {}\nmass_fraction = {}\n", array(lo), array(hi), array(f));
   out += fmt::format("provenance = {}\nsource = {}\n", toml_string(to_string(provenance)), toml_string(source));
 }
@@ -90,7 +102,7 @@ std::string parameters_toml(const ReduceResult& r, const RunInfo& info) {
     if (std::isfinite(p.sd)) words += " +- " + format_value(p.sd);
     words += " " + p.unit;
     if (p.n > 0) words += fmt::format(" (n = {})", p.n);
-    out += fmt::format("\n# {}: {}\n[{}]\n", p.key, words, p.key);
+    out += fmt::format("\n# {}: {}\n[{}]\n", p.key, commented(words), p.key);
     if (!std::isnan(p.value)) out += fmt::format("value = {}\n", number(p.value));
     if (!p.text.empty()) out += fmt::format("text = {}\n", toml_string(p.text));
     if (std::isfinite(p.sd)) out += fmt::format("sd = {}\n", number(p.sd));
@@ -110,7 +122,7 @@ std::string parameters_toml(const ReduceResult& r, const RunInfo& info) {
               s.note.empty() ? fmt::format("sieve analysis {}", s.name) : s.note);
   if (!r.warnings.empty()) {
     out += "\n# Warnings about the inputs:\n";
-    for (const auto& w : r.warnings) out += fmt::format("#   {}: {}\n", w.where, w.message);
+    for (const auto& w : r.warnings) out += fmt::format("#   {}: {}\n", commented(w.where), commented(w.message));
   }
   return out;
 }

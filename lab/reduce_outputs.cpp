@@ -69,11 +69,18 @@ std::vector<Warning> stage_plots(StagedOutput& staged, const ReduceResult& r, co
   fs::create_directories(tmp);
   const Exec e = run_capture(fmt::format("{} {} {} {}", shell_quote(python), shell_quote(script),
                                          shell_quote(h5.string()), shell_quote(tmp.string())));
+  // What the helper prints (a traceback, matplotlib's chatter) goes to its own log beside the outputs,
+  // never into a data file; the warning names the log and quotes its last line only.
+  staged.write_text(out_dir / "plot_lab_grids.log", e.output.empty() ? "(the helper printed nothing)\n" : e.output);
   if (e.status != 0) {
-    std::string why = e.output.empty() ? "no output" : e.output;
-    while (!why.empty() && why.back() == '\n') why.pop_back();
-    warnings.push_back({script, fmt::format("{} (exit {}): no PNG maps written{}: {}", python, e.status,
-                                            e.status == 3 ? " (matplotlib, h5py or numpy missing)" : "", why)});
+    std::string last = e.output;
+    while (!last.empty() && (last.back() == '\n' || last.back() == '\r')) last.pop_back();
+    if (const auto nl = last.rfind('\n'); nl != std::string::npos) last = last.substr(nl + 1);
+    if (last.size() > 200) last = last.substr(0, 200) + "...";
+    warnings.push_back({script, fmt::format("{} (exit {}): no PNG maps written{}: {}{}", python, e.status,
+                                            e.status == 3 ? " (matplotlib, h5py or numpy missing)" : "",
+                                            last.empty() ? "no output" : last,
+                                            e.output.empty() ? "" : " (full output in plot_lab_grids.log)")});
   } else {
     for (const auto& g : r.block_cut->cases) {
       const std::string name = fmt::format("mixing_case_{}.png", g.case_id);

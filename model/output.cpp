@@ -164,7 +164,7 @@ std::string RunOutput::finish(const World& w, double wall_seconds, int threads) 
   h5_->attribute("/profile", "wall_seconds", wall_seconds);
   h5_->attribute("/profile", "steps_per_second", wall_seconds > 0 ? static_cast<double>(w.steps()) / wall_seconds : 0.0);
   h5_->attribute("/profile", "threads", static_cast<std::int64_t>(threads));
-  h5_->flush();
+  h5_->close();  // throws (path, cause) if the data did not reach the disk
   h5_.reset();
 
   std::string x = "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n<Xdmf Version=\"2.0\">\n <Domain>\n";

@@ -168,6 +168,45 @@ std::vector<int> initial_state_materials(const Params& t, const std::string& sce
   return {used.begin(), used.end()};
 }
 
+// A snapshot of an earlier run has spheres resting on its walls with contact overlaps of ~1e-3 r; a cut
+// deeper than this share of the radius is a wall the snapshot never had.
+constexpr double kWallCutTolerance = 0.02;
+
+bool inside(const Vec3& p, const Vec3& lo, const Vec3& hi) {
+  return p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y && p.z >= lo.z && p.z <= hi.z;
+}
+
+void check_inside_domain(const Params& t, std::string_view key, const Vec3& p, const WorldConfig& c,
+                         const std::string& what) {
+  if (!inside(p, c.domain_min, c.domain_max))
+    t.fail(key, fmt::format("{} at ({:g}, {:g}, {:g}) m is outside the [domain] box ({:g}, {:g}, {:g}) to ({:g}, {:g}, "
+                            "{:g}) m",
+                            what, p.x, p.y, p.z, c.domain_min.x, c.domain_min.y, c.domain_min.z, c.domain_max.x,
+                            c.domain_max.y, c.domain_max.z));
+}
+
+// Rayleigh time of sphere a: pi r sqrt(rho/G) / (0.8766 + 0.163 nu) (DESIGN.md, time step).
+double rayleigh_time(const Scene& s, std::size_t a) {
+  const Material& m = s.materials[static_cast<std::size_t>(s.particles.material[a])];
+  return 3.14159265358979323846 * s.particles.radius[a] * std::sqrt(m.density / m.shear_modulus()) /
+         (0.8766 + 0.163 * m.poisson_ratio);
+}
+
+// The habit is 20 % of T_R; time-step studies of this project chose up to ~40 % (mixing_fast). Above half of
+// it a contact lasts a few steps only: legal (a particle alone in a fluid has no contact), but worth a word.
+constexpr double kRayleighWarnShare = 0.5;
+
+void warn_time_step(Scene& s) {
+  if (s.particles.size() == 0) return;
+  double t_r = std::numeric_limits<double>::infinity();
+  for (std::size_t a = 0; a < s.particles.size(); ++a) t_r = std::min(t_r, rayleigh_time(s, a));
+  if (s.config.dt > kRayleighWarnShare * t_r)
+    s.warnings.push_back(fmt::format("{}: time_step {:g} s is {:.0f} % of the Rayleigh time of the smallest sphere "
+                                     "({:.3g} s; the habit is 20 %): contacts may be unresolved; check with a "
+                                     "time-step study (pastemix sweep --vary dt)",
+                                     s.path, s.config.dt, 100 * s.config.dt / t_r, t_r));
+}
+
 void read_initial_state(const Params& t, const std::string& scene_path, Scene& s) {
   H5Reader h5(initial_file(t, scene_path));
   std::vector<int> map;
@@ -183,8 +222,19 @@ void read_initial_state(const Params& t, const std::string& scene_path, Scene& s
   for (std::size_t a = 0; a < r.size(); ++a) {
     const int mat = map[static_cast<std::size_t>(m[a])];
     const Vec3 om = has_w && s.plan.rotation ? Vec3{w[3 * a], w[3 * a + 1], w[3 * a + 2]} : Vec3{};
-    s.particles.add(mat, r[a], s.materials[static_cast<std::size_t>(mat)].density,
-                    {x[3 * a], x[3 * a + 1], x[3 * a + 2]}, {v[3 * a], v[3 * a + 1], v[3 * a + 2]}, om);
+    const Vec3 p{x[3 * a], x[3 * a + 1], x[3 * a + 2]};
+    check_inside_domain(t, "file", p, s.config, fmt::format("sphere {} of the snapshot", a));
+    // A sphere cut by a wall of this scene would be pushed out at an arbitrary speed on the first step.
+    for (const Wall& wall : s.walls) {
+      Vec3 n;
+      const double gap = wall_distance(wall, Vec3{}, p, &n);
+      if (gap < r[a] * (1.0 - kWallCutTolerance))
+        t.fail("file", fmt::format("sphere {} of the snapshot (radius {:g} m) is cut by wall '{}' ({:.3g} m deep) "
+                                   "at t = 0",
+                                   a, r[a], wall.name, r[a] - gap));
+    }
+    s.particles.add(mat, r[a], s.materials[static_cast<std::size_t>(mat)].density, p,
+                    {v[3 * a], v[3 * a + 1], v[3 * a + 2]}, om);
   }
 }
 
@@ -249,6 +299,10 @@ Scene parse_scene(std::string_view text, const std::string& display_path) {
   s.seed = static_cast<std::uint64_t>(root.integer_or("seed", 1));
   s.config.dt = root.number("time_step", Range::positive);
   s.end_time = root.number("end_time", Range::positive);
+  if (s.end_time < s.config.dt)
+    root.fail("end_time", fmt::format("end_time {:g} s is shorter than one time step ({:g} s): the run would make no "
+                                      "step",
+                                      s.end_time, s.config.dt));
 
   const Params dom = root.table("domain");
   s.config.domain_min = vec(dom, "min");
@@ -268,7 +322,7 @@ Scene parse_scene(std::string_view text, const std::string& display_path) {
     s.config.gravity = vec_or(*ph, "gravity", s.config.gravity);
     rotation_switch = ph->boolean_or("rotation", true);
   }
-  s.fluid = fluid::read_fluid_regions(root, display_path);  // fluid hook
+  s.fluid = fluid::read_fluid_regions(root, display_path, s.config.domain_min, s.config.domain_max);  // fluid hook
   s.plan.fluid = !s.fluid.empty();
 
   const Params contact = root.table("contact");
@@ -461,6 +515,18 @@ Scene parse_scene(std::string_view text, const std::string& display_path) {
       region.r_bottom = up ? cone->r0 : cone->r1;
       region.r_top = up ? cone->r1 : cone->r0;
     }
+    {
+      // A region reaching out of the domain would put spheres there: the run would stop at t = 0 with "left
+      // the domain" and no line. Said here, at the factory's table.
+      Vec3 lo, hi;
+      region.bounds(&lo, &hi);
+      const Vec3 &dlo = s.config.domain_min, &dhi = s.config.domain_max;
+      if (!inside(lo, dlo, dhi) || !inside(hi, dlo, dhi))
+        f.fail(shape == "box" ? "max" : shape == "funnel" ? "wall" : "radius",
+               fmt::format("the {} region ({:g}, {:g}, {:g}) to ({:g}, {:g}, {:g}) m reaches outside the [domain] box "
+                           "({:g}, {:g}, {:g}) to ({:g}, {:g}, {:g}) m",
+                           shape, lo.x, lo.y, lo.z, hi.x, hi.y, hi.z, dlo.x, dlo.y, dlo.z, dhi.x, dhi.y, dhi.z));
+    }
     // A wall crossing the region (e.g. a plate across the fill box) is a scene error. A wall surface point
     // deeper inside the region than the smallest particle radius means the wall passes through it; walls
     // on the region's boundary (a box filled up to its sides) do not count.
@@ -540,6 +606,7 @@ Scene parse_scene(std::string_view text, const std::string& display_path) {
     s.config.kinetic_limit = 2.0 * (ke0 + m * fall) + 1e-12;
   }
   root.finish();
+  warn_time_step(s);
   return s;
 }
 

@@ -102,6 +102,7 @@ struct Scene {
   Particles particles;
   std::vector<Wall> walls;
   std::vector<fluid::FluidRegion> fluid;  // [[fluid]] regions (empty: no fluid pass)
+  std::vector<std::string> warnings;      // legal but doubtful settings (a time step near the Rayleigh time)
 };
 
 Scene load_scene(const std::filesystem::path& path);

@@ -15,9 +15,10 @@ struct CommandResult {
   std::string output;
 };
 
-// `args` is appended to the binary path as shell words (quote them yourself if needed).
-inline CommandResult run_pastemix(const std::string& args) {
-  std::string cmd = std::string("'") + PASTEMIX_BINARY + "' " + args + " 2>&1";
+// `args` is appended to the binary path as shell words (quote them yourself if needed); `prefix` goes
+// before it (environment variables, `ulimit ...;`), run by sh.
+inline CommandResult run_pastemix(const std::string& args, const std::string& prefix = "") {
+  std::string cmd = prefix + " '" + PASTEMIX_BINARY + "' " + args + " 2>&1";
   CommandResult r;
   FILE* pipe = popen(cmd.c_str(), "r");
   if (!pipe) return r;

@@ -92,7 +92,7 @@ void write_maps_h5(const std::filesystem::path& path, const MixingMap& m, const 
   h5.attribute("/accounting", "escaped_count", static_cast<std::int64_t>(r.escaped_count));
   h5.attribute("/accounting", "conservation_relative_error", m.conservation_error());
   h5.attribute("/accounting", "overfull_blocks", static_cast<std::int64_t>(m.overfull_blocks));
-  h5.flush();
+  h5.close();
 }
 
 std::string maps_table(const MixingMap& m, const ResultSnapshot& r, const MixingInputs& in, const std::string& K_source) {

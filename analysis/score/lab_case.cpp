@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "analysis/score/lab_case.h"
 
+#include <algorithm>
+
 #include <cmath>
 
 #include <fmt/format.h>
@@ -57,6 +59,14 @@ LabCase read_lab_case(const std::filesystem::path& lab_h5, int case_id, bool nee
   if (h5.exists(prefix + "paste_solids_fraction"))
     c.solids_fraction = h5.attribute_double(prefix + "paste_solids_fraction", "value");
   if (h5.exists(prefix + "falling_height")) c.falling_height = h5.attribute_double(prefix + "falling_height", "value");
+  const std::string psd = fmt::format("/psd/mixing_case_{}", case_id);
+  if (h5.exists(psd + "/d_min") && h5.exists(psd + "/d_max")) {
+    const auto lo = h5.read_doubles(psd + "/d_min"), hi = h5.read_doubles(psd + "/d_max");
+    if (!lo.empty() && !hi.empty()) {
+      c.d_min = *std::min_element(lo.begin(), lo.end());
+      c.d_max = *std::max_element(hi.begin(), hi.end());
+    }
+  }
   const std::string kparam = fmt::format("/parameters/block_cut.case_{}.K", case_id);
   c.has_grid = h5.exists(grid);
   if (c.has_grid) {

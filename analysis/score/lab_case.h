@@ -24,6 +24,7 @@ struct LabCase {
   std::string K_source;
   double solids_fraction = nan;      // - (mixing programme), NaN if absent
   double falling_height = nan;       // m
+  double d_min = nan, d_max = nan;   // m, the rock sizes of the programme (/psd/mixing_case_<n>); NaN if absent
 };
 
 // Reads case `case_id`. An unknown case -> InputError naming lab.h5 and the case. When `need_grid` and the

@@ -267,11 +267,7 @@ DragFitOutputs write_drag_fit_outputs(const DragFitResult& r, const std::filesys
   StagedOutput out;
   // The plot script reads the staged (temporary) CSVs, so keep their temporary paths.
   auto stage = [&](const std::filesystem::path& final_path, const std::string& text) {
-    const auto temp = out.path(final_path);
-    std::ofstream f(temp, std::ios::binary);
-    f << text;
-    if (!f) throw RuntimeFailure(fmt::format("cannot write {}", temp.string()));
-    return temp;
+    return out.write_text(final_path, text);
   };
   const auto spheres = stage(out_dir / "drag_fit_spheres.csv", spheres_csv(r));
   const auto curves = stage(out_dir / "drag_curves_sampled.csv", curves_csv(r));

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "base/error.h"
+#include "base/suggest.h"
 #include "base/units.h"
 
 namespace pastemix::lab {
@@ -58,6 +59,27 @@ void require_spec_columns(const CsvTable& table, const std::vector<ColumnSpec>& 
   }
   table.require_columns(required);
   table.require_only_columns(known);
+}
+
+void require_unique_ids(const CsvTable& table, std::string_view column) {
+  std::map<long, int> first_line;
+  for (const auto& row : table.rows()) {
+    const long id = table.integer(row, column);
+    auto [it, fresh] = first_line.emplace(id, row.line);
+    if (!fresh)
+      table.fail(row, column, fmt::format("{} {} is listed twice (first on line {}): each trial counts once", column,
+                                          id, it->second));
+  }
+}
+
+void check_plausible(const CsvTable& table, const CsvTable::Row& row, std::string_view column, double si_value,
+                     const Plausible& bounds, const ColumnUnits& units) {
+  if (!units.plausibility_checks() || (si_value >= bounds.lo && si_value <= bounds.hi)) return;
+  table.fail(row, column,
+             fmt::format("{} = {:g} is not plausible as {} (expected {:g} to {:g}); check the unit of the column "
+                         "(the manifest's [.units]). If the value is right, set allow_implausible_values = true in "
+                         "this input's manifest table",
+                         shown(table.text(row, column)), si_value, bounds.what, bounds.lo, bounds.hi));
 }
 
 double rounding_tolerance(std::string_view cell) {

@@ -39,8 +39,12 @@ class ColumnUnits {
 
   double factor(std::string_view column) const;       // multiply a cell by this to get SI
   const std::string& unit(std::string_view column) const;  // the unit as written
+  // On by default; a manifest turns it off for one input with `allow_implausible_values = true`.
+  bool plausibility_checks() const { return plausibility_checks_; }
+  void set_plausibility_checks(bool on) { plausibility_checks_ = on; }
 
  private:
+  bool plausibility_checks_ = true;
   struct Entry {
     std::string unit;
     double factor = 1.0;
@@ -50,6 +54,22 @@ class ColumnUnits {
 
 // Checks that every required column is present and no unknown column is; line 1 errors name the column.
 void require_spec_columns(const CsvTable& table, const std::vector<ColumnSpec>& specs);
+
+// Every value of an id column (a trial or test number) must be unique: a duplicated row would count one
+// trial twice. The error names both lines.
+void require_unique_ids(const CsvTable& table, std::string_view column);
+
+// Bounds of what a lab measures, in SI. Outside them the value is almost surely a unit mistake (a density
+// in g/cm3 read as kg/m3 gives 1.8 kg/m3; in kg/m3 read as g/cm3, 1.8e6).
+struct Plausible {
+  double lo, hi;
+  const char* what;  // "density", with the unit, for the message
+};
+inline constexpr Plausible plausible_density{100.0, 20000.0, "a density (kg/m3)"};
+inline constexpr Plausible plausible_paste_yield_stress{0.0, 10000.0, "a paste's yield stress (Pa)"};
+// InputError at the row (naming the value, the bounds and the manifest switch) if `si_value` is outside.
+void check_plausible(const CsvTable& table, const CsvTable::Row& row, std::string_view column, double si_value,
+                     const Plausible& bounds, const ColumnUnits& units);
 
 // Half a unit of the last printed digit of `cell` ("0.612" -> 0.0005, "136" -> 0.5): how far a printed value
 // may lie from the exact one through rounding alone.

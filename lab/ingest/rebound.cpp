@@ -27,12 +27,13 @@ IngestResult ingest_rebound(const CsvTable& t, const ColumnUnits& units) {
   require_spec_columns(t, rebound_columns());
   IngestResult out;
   std::vector<double> e, diameter, density;
+  require_unique_ids(t, "test");
   for (const auto& row : t.rows()) {
-    t.integer(row, "test");
     diameter.push_back(t.number(row, "steel_ball_diameter_mm", Range::positive) *
                        units.factor("steel_ball_diameter_mm"));
     density.push_back(t.number(row, "steel_ball_density_kg_m3", Range::positive) *
                       units.factor("steel_ball_density_kg_m3"));
+    check_plausible(t, row, "steel_ball_density_kg_m3", density.back(), plausible_density, units);
     const double hf = t.number(row, "falling_height_mm", Range::positive) * units.factor("falling_height_mm");
     const double hr = t.number(row, "rebound_height_mm", Range::non_negative) * units.factor("rebound_height_mm");
     if (hr >= hf)

@@ -7,8 +7,10 @@
 #include <fmt/format.h>
 
 #include "base/error.h"
+#include "base/suggest.h"
 #include "base/stats.h"
 #include "base/units.h"
+#include "lab/ingest/printed.h"
 #include "lab/lambert_w.h"
 
 namespace pastemix::lab {
@@ -63,12 +65,13 @@ IngestResult ingest_slump(const CsvTable& t, const ColumnUnits& units) {
   const bool has_printed = t.has_column("yield_stress_Pa");
   std::vector<double> tau, rho, tau_prime, heights, printed;
   std::vector<std::string> printed_cells;
+  require_unique_ids(t, "trial");
   for (const auto& row : t.rows()) {
-    t.integer(row, "trial");
     const double H = t.number(row, "H_mm", Range::positive) * units.factor("H_mm");
     const double D = t.number(row, "D_mm", Range::positive) * units.factor("D_mm");
     const double density = t.number(row, "paste_density_kg_m3", Range::positive) *
                            units.factor("paste_density_kg_m3");
+    check_plausible(t, row, "paste_density_kg_m3", density, plausible_density, units);
     const double S = t.number(row, "slump_mm", Range::non_negative) * units.factor("slump_mm");
     if (S >= H)
       t.fail(row, "slump_mm",
@@ -82,9 +85,25 @@ IngestResult ingest_slump(const CsvTable& t, const ColumnUnits& units) {
                          0.5 * density * units::g * H));
     if (std::abs(H / D - 1.0) > 0.25)
       t.fail(row, "D_mm", fmt::format("the Pashias-Boger cylinder relation needs H ~ D; got H/D = {:.2f}", H / D));
-    const double tp = pashias_tau(S / H);
+    double tp = 0.0;
+    try {
+      tp = pashias_tau(S / H);
+    } catch (const RuntimeFailure& e) {
+      // At S/H -> 0 or 1 the inversion cannot be trusted to 1e-9; the slump test cannot resolve such a
+      // value either (a slump of 1e-15 mm, or a hair below the mould height).
+      t.fail(row, "slump_mm",
+             fmt::format("slump {} m of H = {} m (S/H = {:.3g}) is at the edge of what the Pashias-Boger relation "
+                         "resolves: {}",
+                         S, H, S / H, e.what()));
+    }
     tau_prime.push_back(tp);
     tau.push_back(tp * density * units::g * H);
+    if (units.plausibility_checks() && tau.back() > plausible_paste_yield_stress.hi)
+      t.fail(row, "slump_mm",
+             fmt::format("gives tau_y = {:.0f} Pa, more than {:g} Pa, which is not plausible for a paste; check the "
+                         "units of H_mm and paste_density_kg_m3 (or set allow_implausible_values = true in the "
+                         "manifest's [slump] table)",
+                         tau.back(), plausible_paste_yield_stress.hi));
     rho.push_back(density);
     heights.push_back(H);
     if (has_printed) {
@@ -159,17 +178,23 @@ IngestResult ingest_slump(const CsvTable& t, const ColumnUnits& units) {
     }
   }
   if (t.has_column("yield_stress_mean_Pa")) {
+    // The mean is a merged cell repeated on every row: every row is checked, the disagreeing ones reported
+    // in one warning.
+    std::vector<int> lines;
+    std::string first_cell;
     for (const auto& row : t.rows()) {
       auto m = t.optional_number(row, "yield_stress_mean_Pa", Range::positive);
       if (!m) continue;
       const double printed_mean = *m * units.factor("yield_stress_mean_Pa");
       if (std::abs(printed_mean - s.mean) > rounding_tolerance(t.text(row, "yield_stress_mean_Pa"))) {
-        out.warnings.push_back(Warning{where(t, row), fmt::format("printed mean yield stress {} Pa, recomputed "
-                                                                  "{:.1f} Pa",
-                                                                  t.text(row, "yield_stress_mean_Pa"), s.mean)});
+        if (lines.empty()) first_cell = t.text(row, "yield_stress_mean_Pa");
+        lines.push_back(row.line);
       }
-      break;  // the mean is a merged cell repeated on every row: report it once
     }
+    if (!lines.empty())
+      out.warnings.push_back(Warning{fmt::format("{}:{}", t.path(), lines.front()),
+                                     fmt::format("printed mean yield stress {} Pa, recomputed {:.1f} Pa{}",
+                                                 shown(first_cell), s.mean, other_lines(lines))});
   }
   return out;
 }

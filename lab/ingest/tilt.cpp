@@ -23,8 +23,8 @@ IngestResult ingest_tilt(const CsvTable& t, const ColumnUnits& units) {
   require_spec_columns(t, tilt_columns());
   IngestResult out;
   std::vector<double> mu;
+  require_unique_ids(t, "trial");
   for (const auto& row : t.rows()) {
-    t.integer(row, "trial");
     const double L = t.number(row, "L_cm_as_printed", Range::positive) * units.factor("L_cm_as_printed");
     const double h = t.number(row, "H_l_cm_as_printed", Range::non_negative) * units.factor("H_l_cm_as_printed");
     if (h >= L)

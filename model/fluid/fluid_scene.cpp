@@ -156,7 +156,8 @@ LabPaste read_lab_paste(const std::string& parameters_toml, const std::string& c
   return p;
 }
 
-std::vector<FluidRegion> read_fluid_regions(const Params& root, const std::string& scene_path) {
+std::vector<FluidRegion> read_fluid_regions(const Params& root, const std::string& scene_path, const Vec3& domain_min,
+                                            const Vec3& domain_max) {
   std::vector<FluidRegion> out;
   for (const Params& f : root.tables("fluid")) {
     FluidRegion r;
@@ -168,6 +169,21 @@ std::vector<FluidRegion> read_fluid_regions(const Params& root, const std::strin
     r.z_bottom = f.number("bottom");
     r.z_surface0 = f.number("surface");
     if (!(r.z_surface0 > r.z_bottom)) f.fail("surface", "the free surface must lie above the bottom");
+    // The region must lie in the domain: fluid where no sphere can be is a mistake of the scene (a unit, a
+    // sign), and the surface rise would divide the displaced volume by the wrong area.
+    auto within = [&](const char* key, double lo, double hi, double dlo, double dhi, const char* axis) {
+      if (lo < dlo || hi > dhi)
+        f.fail(key, fmt::format("{} = [{:g}, {:g}] m reaches outside the [domain] box ({} from {:g} to {:g} m)", key,
+                                lo, hi, axis, dlo, dhi));
+    };
+    within("x", r.x_min, r.x_max, domain_min.x, domain_max.x, "x");
+    within("y", r.y_min, r.y_max, domain_min.y, domain_max.y, "y");
+    if (r.z_bottom < domain_min.z)
+      f.fail("bottom", fmt::format("bottom = {:g} m is below the [domain] box (z from {:g} to {:g} m)", r.z_bottom,
+                                   domain_min.z, domain_max.z));
+    if (r.z_surface0 > domain_max.z)
+      f.fail("surface", fmt::format("surface = {:g} m is above the [domain] box (z from {:g} to {:g} m)", r.z_surface0,
+                                    domain_min.z, domain_max.z));
     r.rheology = f.choice("rheology", {"newtonian", "bingham"});
     if (f.has("rheology_at") && !f.has("rheology_from")) f.fail("rheology_at", "needs rheology_from");
     if (f.has("rheology_from")) {

@@ -37,7 +37,9 @@
 
 namespace pastemix::model::fluid {
 
-std::vector<FluidRegion> read_fluid_regions(const Params& root, const std::string& scene_path);
+// Every region must lie inside the domain box [domain_min, domain_max] (m): InputError at its key otherwise.
+std::vector<FluidRegion> read_fluid_regions(const Params& root, const std::string& scene_path, const Vec3& domain_min,
+                                            const Vec3& domain_max);
 
 // The drag curve chosen by `lab reduce` in a parameters.toml: [drag_curve.chosen] text = NAME and
 // [drag_curve.NAME.<coefficient>] value = ... (InputError naming the file on anything missing).

@@ -134,6 +134,21 @@ TEST_CASE("cli: bad inputs exit 2, name the file and field, and write nothing") 
   CHECK(r.output.find("K = unknown") != std::string::npos);
 }
 
+TEST_CASE("cli: score refuses a file given twice, a copied realization and an ensemble of different scenes") {
+  Fixture f("cli_ensemble");
+  const std::string lab = fmt::format(" --lab 3 --lab-h5 {}", f.p("lab.h5"));
+  f.expect_bad("score " + f.p("r1.h5") + " " + f.p("r1.h5") + lab, {"r1.h5", "given twice (as result 1 and 2)"});
+  fs::copy_file(f.dir / "r1.h5", f.dir / "copy.h5");
+  f.expect_bad("score " + f.p("r1.h5") + " " + f.p("copy.h5") + lab,
+               {"copy.h5", "seed 7 of scene 00000000deadbeef is also the seed of", "the same realization twice"});
+  auto other = rock_result(0.0105);
+  other.seed = 9;
+  other.scene_hash = "1111111111111111";
+  write_result(f.dir / "other.h5", other);
+  f.expect_bad("score " + f.p("r1.h5") + " " + f.p("other.h5") + lab,
+               {"other.h5", "scene_hash", "scene 1111111111111111 differs", "realizations of one scene"});
+}
+
 TEST_CASE("cli: repose measures the last snapshot of result files, with the mean over seeds") {
   Fixture f("cli_repose");
   // Two cone piles of 35 deg (base radius 6 cm, 3 mm spheres filling the cone).

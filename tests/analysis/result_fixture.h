@@ -29,6 +29,7 @@ struct ResultSpec {
   std::int64_t seed = 7;
   bool material_density = true, surface = true, paste = true;
   double surface_z = 0.10, paste_density = 1843.0, solids = 0.75;
+  std::string scene_hash = "00000000deadbeef";
   // Spheres removed at the domain boundary (model/output.h /escaped): removal time (s) and mass (kg).
   std::vector<std::array<double, 2>> escaped;
   // Final-snapshot velocities (m/s) per sphere; empty: all at rest. `velocities = false` writes none.
@@ -41,7 +42,7 @@ inline void write_result(const std::filesystem::path& path, const ResultSpec& s)
   const std::string scene = "# synthetic scene for the analysis tests\n";
   h5.attribute("/", "scene_path", "synthetic.toml");
   h5.attribute("/", "scene_text", scene);
-  h5.attribute("/", "scene_hash", "00000000deadbeef");
+  h5.attribute("/", "scene_hash", s.scene_hash);
   h5.attribute("/", "seed", s.seed);
   std::vector<std::string> names;
   for (std::size_t m = 0; m < s.densities.size(); ++m) names.push_back(fmt::format("rock{}", m));

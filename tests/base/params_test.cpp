@@ -35,7 +35,7 @@ TEST_CASE("params: an unread key is an error with its line, also in sub-tables")
   auto q = Params::parse("[box]\nsize = 1\nsixe = 2\n", "b.toml");
   q.table("box").number("size");
   CHECK_THROWS_WITH_AS(q.finish(),
-                       "b.toml:3: key 'sixe': unknown key (nothing reads it; check the spelling and the table it is in)",
+                       "b.toml:3: key 'sixe': unknown key (did you mean 'size'?) (nothing reads it; check the spelling and the table it is in)",
                        InputError);
 }
 
