@@ -13,8 +13,7 @@
 namespace pastemix::flow {
 
 FlowSolver::FlowSolver(const Grid& grid, Phases phases, FlowSettings settings)
-    : g_(grid), ph_(std::move(phases)), s_(settings) {
-  g_.check();
+    : g_((grid.check(), grid)), ph_(std::move(phases)), s_(settings), viscous_(g_), pressure_(g_) {
   if (!(s_.cfl > 0.0 && s_.cfl <= 0.5)) throw std::invalid_argument("flow: cfl must be in (0, 0.5]");
   for (int c = 0; c < 3; ++c) u_[c].assign(g_.face_count(c), 0.0);
   p_.assign(g_.cell_count(), 0.0);
@@ -112,7 +111,7 @@ StepStats FlowSolver::step(double dt) {
   st.advection = advect(g_, ph_, dt, totals_.steps, alpha_, u_);
   const Faces rho = face_densities(g_, ph_, alpha_);
   update_viscosity(gamma);
-  st.viscous = viscous_step(g_, dt, rho, mu_, u_, s_.viscous_tolerance, s_.max_iterations);
+  st.viscous = viscous_.solve(dt, rho, mu_, u_, s_.viscous_tolerance, s_.max_iterations);
   for (int c = 0; c < 3; ++c) {
     if (s_.gravity[c] == 0.0) continue;
     const auto fd = g_.face_dims(c);
@@ -124,7 +123,7 @@ StepStats FlowSolver::step(double dt) {
           u_[c][g_.face(c, q)] += s_.gravity[c] * dt;
         }
   }
-  st.projection = project(g_, dt, rho, u_, p_, s_.pressure_tolerance, s_.max_iterations);
+  st.projection = pressure_.project(dt, rho, u_, p_, s_.pressure_tolerance, s_.max_iterations);
   for (int c = 0; c < 3; ++c)
     for (double v : u_[c])
       if (!std::isfinite(v))

@@ -77,6 +77,8 @@ class FlowSolver {
   Grid g_;
   Phases ph_;
   FlowSettings s_;
+  ViscousOperator viscous_;
+  PressureOperator pressure_;
   Faces u_;
   std::vector<double> p_, alpha_, mu_;
   double t_ = 0.0;
