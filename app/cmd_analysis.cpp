@@ -18,6 +18,7 @@
 
 #include "analysis/maps/maps_h5.h"
 #include "analysis/maps/mixing_map.h"
+#include "analysis/maps/motion.h"
 #include "analysis/maps/result_file.h"
 #include "analysis/pile/repose_angle.h"
 #include "analysis/plot.h"
@@ -48,6 +49,8 @@ struct CommonOpts {
   std::optional<int> snapshot, lab_case;
   double rho_s = 2710.0, e_f = 0.6;
   double no_rock_below_g = 1e3 * kLabMassResolution;  // g
+  double moving_speed = 0.01, moving_mass_g = 1.0;    // m/s, g: the at-rest limits (maps/motion.h)
+  bool allow_moving = false;
   std::string lab_h5 = "out/lab/lab.h5", out;
   std::vector<std::string> results;
 };
@@ -76,6 +79,24 @@ void add_common(CLI::App* cmd, CommonOpts& o) {
   cmd->add_option("--rho-s", o.rho_s, "tailings particle density for S, kg/m3")->capture_default_str();
   cmd->add_option("--e-f", o.e_f, "final void ratio of the dried paste for S")->capture_default_str();
   cmd->add_option("--lab-h5", o.lab_h5, "lab.h5 from `pastemix lab reduce`")->capture_default_str();
+  cmd->add_option("--moving-speed", o.moving_speed, "a particle faster than this is moving, m/s")->capture_default_str();
+  cmd->add_option("--moving-mass", o.moving_mass_g, "a state with more moving rock is not at rest, g")
+      ->capture_default_str();
+  cmd->add_flag("--allow-moving", o.allow_moving,
+                "map a state that is not at rest (an unfinished pour), marked as such in every output");
+}
+
+// The state's motion, printed; a state not at rest is refused (exit 2) unless --allow-moving.
+Motion checked_motion(const ResultSnapshot& r, const CommonOpts& o) {
+  if (!(o.moving_speed > 0.0) || !std::isfinite(o.moving_speed))
+    throw InputError("--moving-speed", 0, "", "must be positive (m/s)");
+  if (!(o.moving_mass_g >= 0.0) || !std::isfinite(o.moving_mass_g))
+    throw InputError("--moving-mass", 0, "", "must be >= 0 (g)");
+  const Motion m = motion_of(r, {o.moving_speed, 1e-3 * o.moving_mass_g});
+  fmt::print("{}: {}", r.path, m.line(r));
+  if (!m.at_rest() && !o.allow_moving) throw InputError(r.path, 0, "", m.refusal(r));
+  if (!m.at_rest()) fmt::print("{}: --allow-moving: mapping an UNFINISHED state (not at rest); every output says so\n", r.path);
+  return m;
 }
 
 BlockLayout layout_of(const CommonOpts& o) {
@@ -97,6 +118,10 @@ BlockLayout layout_of(const CommonOpts& o) {
   L.layer_thickness = o.layer_thickness;
   L.top_open = o.above_surface == "layer1";
   return L;
+}
+
+StateMark state_of(const Motion& m) {
+  return {m.at_rest(), m.known, m.moving_mass, m.in_flight_mass, m.max_speed, m.limits.speed, m.limits.mass_limit};
 }
 
 ResultOverrides overrides_of(const CommonOpts& o) {
@@ -161,6 +186,7 @@ void run_maps(const CommonOpts& o) {
   const BlockLayout L = layout_of(o);
   const ResultOverrides over = overrides_of(o);
   const ResultSnapshot r = read_result(o.results.front(), over);
+  const Motion motion = checked_motion(r, o);
   double K = std::nan("");
   std::string K_source;
   if (o.K) {
@@ -181,7 +207,8 @@ void run_maps(const CommonOpts& o) {
   const fs::path out = o.out;
   StagedOutput staged;
   const fs::path h5 = staged.path(out / "maps.h5");
-  write_maps_h5(h5, m, in, r, {lab::software_version(), command_line("maps", o), lab::utc_now(), K_source});
+  write_maps_h5(h5, m, in, r, {lab::software_version(), command_line("maps", o), lab::utc_now(), K_source},
+                state_of(motion));
   stage_pngs(staged, out, {"maps", h5.string()}, {"maps.png"});
   staged.commit();
   for (const auto& p : staged.final_paths()) fmt::print("wrote {}\n", p.string());
@@ -206,9 +233,10 @@ void run_score(const CommonOpts& o) {
   for (const auto& path : o.results) {
     const ResultSnapshot r = read_result(path, over);
     for (const auto& n : r.notes) fmt::print("note: {}: {}\n", path, n);
+    const Motion motion = checked_motion(r, o);
     const MixingInputs in = inputs_for(L, r, K, o);
     maps.push_back(mixing_map(in, ParticleView{r.position, r.radius, r.density}));
-    reals.push_back({r.path, r.seed, r.scene_hash, r.snapshot, r.time_s, 0.0});
+    reals.push_back({r.path, r.seed, r.scene_hash, r.snapshot, r.time_s, 0.0, state_of(motion)});
   }
   const Score s = score_against_lab(lab, maps, reals, 1e-3 * o.no_rock_below_g);
   fmt::print("{}", score_table(s));
@@ -219,8 +247,9 @@ void run_score(const CommonOpts& o) {
   { std::ofstream(csv) << score_csv(s); }
   staged.write_text(out / "score.toml",
                     score_toml(s, lab::software_version(), command_line("score", o), lab::utc_now(), o.lab_h5));
-  const std::string title = fmt::format("Mixing case {}: lab vs model ({} realization{})", s.case_id,
-                                        s.realizations.size(), s.realizations.size() == 1 ? "" : "s");
+  const std::string title = fmt::format("Mixing case {}: lab vs model ({} realization{}){}", s.case_id,
+                                        s.realizations.size(), s.realizations.size() == 1 ? "" : "s",
+                                        s.all_at_rest() ? "" : " - NOT AT REST (--allow-moving)");
   stage_pngs(staged, out, {"score", csv.string(), std::to_string(s.realizations.size()), title},
              {"score_layer_1.png", "score_layer_2.png", "score_layer_3.png"});
   staged.commit();

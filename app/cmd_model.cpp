@@ -50,6 +50,7 @@ void run_one(const model::Scene& scene, const std::string& out_dir, bool quiet, 
              r.threads);
   fmt::print("{}", r.profile_table);
   fmt::print("{}", r.escaped_line());
+  fmt::print(r.failed_to_rest() ? stderr : stdout, "{}", r.stop.line());
   fmt::print("wrote {} and {}\n", r.h5.string(), r.xmf.string());
 }
 

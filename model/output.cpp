@@ -135,6 +135,19 @@ void RunOutput::sample(const World& w) {
   if (const auto* f = w.fluid()) surface_.insert(surface_.end(), f->surfaces().begin(), f->surfaces().end());
 }
 
+void RunOutput::stop_outcome(const StopOutcome& o, const StopRule& rule) {
+  h5_->attribute("/", "stop_rule", rule.at_rest ? "at_rest" : "end_time");
+  h5_->attribute("/", "stop_fired", static_cast<std::int64_t>(o.fired));
+  h5_->attribute("/", "stop_time_s", o.time);
+  h5_->attribute("/", "stop_speed_m_s", rule.speed);
+  h5_->attribute("/", "stop_paste_speed_m_s", rule.paste_speed);
+  h5_->attribute("/", "stop_moving_mass_limit_kg", rule.moving_mass);
+  h5_->attribute("/", "moving_mass_kg", o.last.moving_mass);
+  h5_->attribute("/", "in_flight_mass_kg", o.last.in_flight_mass);
+  h5_->attribute("/", "moving_count", static_cast<std::int64_t>(o.last.moving_count));
+  h5_->attribute("/", "max_speed_m_s", o.last.max_speed);
+}
+
 std::string RunOutput::finish(const World& w, double wall_seconds, int threads) {
   h5_->write("/snapshots/time", snap_times_);
   h5_->write("/timeseries/time", t_);

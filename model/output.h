@@ -19,6 +19,10 @@
 //                             removed at the domain boundary, in order of removal (empty datasets if none):
 //       id (int64), time (s), mass (kg), radius (m), material (int32), position (E x 3, m, just outside
 //       the domain), velocity (E x 3, m/s, the half-step velocity then)
+//   stop (how the run ended, model/stop_rule.h): root attributes stop_rule ("end_time" | "at_rest"),
+//                             stop_fired (0/1: the at-rest rule ended the run before end_time), stop_time_s,
+//                             stop_speed_m_s, stop_paste_speed_m_s, stop_moving_mass_limit_kg, and the census at
+//                             the end: moving_mass_kg, in_flight_mass_kg, moving_count, max_speed_m_s
 //   /timeseries/              sampled every energy_interval: time (s), kinetic, rotational, potential,
 //                             elastic (J), pair_contacts, wall_contacts (int64)
 //   /profile/stage (strings), /profile/seconds (wall s per stage); attributes steps, rebuilds,
@@ -34,6 +38,7 @@
 #include <string>
 #include <vector>
 
+#include "model/stop_rule.h"
 #include "model/world.h"
 
 namespace pastemix {
@@ -52,6 +57,8 @@ class RunOutput {
   ~RunOutput();
   void snapshot(const World& w);
   void sample(const World& w);
+  // How the run ended (model/stop_rule.h): root attributes stop_*, written once before finish().
+  void stop_outcome(const StopOutcome& o, const StopRule& rule);
   // Writes the time series, the profile and closes the file; returns the XDMF text.
   std::string finish(const World& w, double wall_seconds, int threads);
 

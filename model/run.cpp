@@ -55,25 +55,33 @@ RunSummary run_scene(const Scene& scene, const std::filesystem::path& out_dir, c
   const long sample_every = std::max(1L, std::lround(scene.energy_interval / dt));
   const auto t0 = Clock::now();
   auto last_progress = t0;
-  auto emit = [&](long s) {
+  // [stop] rule = "at_rest": a census every check_interval from `start` on; the run ends after `hold`
+  // consecutive passing checks (the last state is written as a snapshot and a sample).
+  const StopRule& rule = scene.stop;
+  RestMonitor rest(rule, dt, total_steps);
+  const long stop_every = rest.every();
+  bool fired = false;
+  auto emit = [&](long s, bool last) {
     auto timer0 = Clock::now();
-    if (s % snap_every == 0 || s == total_steps) out.snapshot(world);
-    if (s % sample_every == 0 || s == total_steps) out.sample(world);
+    if (s % snap_every == 0 || last) out.snapshot(world);
+    if (s % sample_every == 0 || last) out.sample(world);
     world.profile().seconds[Profile::output] += std::chrono::duration<double>(Clock::now() - timer0).count();
   };
   world.check();
-  emit(0);
+  emit(0, total_steps == 0);
   // Steps run in batches up to the next step that checks, writes or reports: World::advance fuses the end
   // of one step with the start of the next inside a batch (the same trajectory as single steps).
   auto next_multiple = [](long s, long every) { return (s / every + 1) * every; };
   for (long s = 0; s < total_steps;) {
     long next = std::min({total_steps, next_multiple(s, opt.check_every), next_multiple(s, snap_every),
-                          next_multiple(s, sample_every)});
+                          next_multiple(s, sample_every), next_multiple(s, stop_every)});
     if (opt.progress) next = std::min(next, next_multiple(s, 100));
     world.advance(next - s);
     s = next;
     if (s % opt.check_every == 0) world.check();
-    emit(s);
+    fired = rest.check(world, s);
+    emit(s, fired || s == total_steps);
+    if (fired) break;
     if (opt.progress && s % 100 == 0) {
       const auto now = Clock::now();
       if (std::chrono::duration<double>(now - last_progress).count() >= opt.progress_every_s) {
@@ -88,6 +96,12 @@ RunSummary run_scene(const Scene& scene, const std::filesystem::path& out_dir, c
   }
   world.check();
   if (opt.progress) std::fprintf(stderr, "\n");
+  r.stop.rule_at_rest = rule.at_rest;
+  r.stop.fired = fired;
+  r.stop.start = rule.start;
+  r.stop.time = world.time();
+  r.stop.last = census(world, rule);
+  out.stop_outcome(r.stop, rule);
   r.wall_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   r.steps = world.steps();
   r.steps_per_second = r.wall_seconds > 0 ? static_cast<double>(r.steps) / r.wall_seconds : 0.0;

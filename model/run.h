@@ -9,6 +9,7 @@
 #include <string>
 
 #include "model/scene.h"
+#include "model/stop_rule.h"
 
 namespace pastemix::model {
 
@@ -33,6 +34,9 @@ struct RunSummary {
   std::size_t escaped_count = 0;
   double escaped_mass = 0.0, total_mass = 0.0;
   std::string escaped_line() const;  // one line for `pastemix run` ("" without outflow)
+  // How the run ended: by the [stop] rule at rest, or at end_time (a warning when the rule asked for rest).
+  StopOutcome stop;
+  bool failed_to_rest() const { return stop.rule_at_rest && !stop.fired; }
 };
 
 // Output files are named after options.stem, else the scene file's stem. On a RuntimeFailure nothing is left behind.

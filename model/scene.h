@@ -23,6 +23,8 @@
 //   rolling_damping = 0.3          # elastic_plastic only: eta_r (critical ratio), default 0.3
 //   [neighbor]
 //   skin = 1e-3                    # m, Verlet skin (default: the smallest particle radius)
+//   [stop]                         # optional: end when the rock is at rest (keys in model/stop_rule.h)
+//   rule = "at_rest"  speed = 0.01  moving_mass = 1e-3  check_interval = 0.01  start = 0.1
 //   [output]                       # optional
 //   interval = 0.01                # s between particle snapshots (default end_time / 20)
 //   energy_interval = 0.001        # s between energy / contact-count samples (default interval)
@@ -68,6 +70,7 @@
 #include <vector>
 
 #include "model/fluid/field.h"
+#include "model/stop_rule.h"
 #include "model/world.h"
 
 namespace pastemix::model {
@@ -88,6 +91,7 @@ struct Scene {
   double end_time = 0.0;      // s
   double output_interval = 0.0;  // s
   double energy_interval = 0.0;  // s
+  StopRule stop;              // [stop]: end at rest (model/stop_rule.h); end_time is then the limit
   Plan plan;
   WorldConfig config;
   std::vector<Material> materials;

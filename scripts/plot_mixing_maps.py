@@ -83,6 +83,8 @@ def plot_maps(h5_path, out_dir):
         C, S, flag = f["/blocks/C"][()], f["/blocks/S"][()], f["/blocks/flag"][()]
         a, acc = f.attrs, f["/accounting"].attrs
         title = f"Model mixing map: {a['result_file']} (seed {a['seed']}, snapshot {a['snapshot']})"
+        if "at_rest" in a and not int(a["at_rest"]):
+            title += f" - NOT AT REST: {a['moving_mass_kg'] * 1e3:.1f} g moving (--allow-moving)"
         note = (f"Surface z = {a['surface_z_m']:.4g} m ({a['surface_z_source']}); paste {a['paste_density_kg_m3']:g} "
                 f"kg/m3, solids {a['solids_fraction']:g}; K = {a['K_kg_m3']:g} kg/m3 ({a['K_source']}). "
                 f"Rock: poured {acc['poured_kg'] * 1e3:.1f} g, unmixed (above the surface"

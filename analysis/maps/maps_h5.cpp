@@ -22,8 +22,15 @@ constexpr const char* kRuleClosed =
 }
 
 void write_maps_h5(const std::filesystem::path& path, const MixingMap& m, const MixingInputs& in,
-                   const ResultSnapshot& r, const MapsProvenance& info) {
+                   const ResultSnapshot& r, const MapsProvenance& info, const StateMark& st) {
   H5Writer h5(path);
+  h5.attribute("/", "state", st.at_rest ? "at rest" : "NOT AT REST (--allow-moving)");
+  h5.attribute("/", "at_rest", static_cast<std::int64_t>(st.at_rest));
+  h5.attribute("/", "moving_mass_kg", st.moving_mass);
+  h5.attribute("/", "in_flight_mass_kg", st.in_flight_mass);
+  h5.attribute("/", "max_speed_m_s", st.max_speed);
+  h5.attribute("/", "moving_speed_limit_m_s", st.speed_limit);
+  h5.attribute("/", "moving_mass_limit_kg", st.mass_limit);
   h5.attribute("/", "software", info.software);
   h5.attribute("/", "command", info.command);
   h5.attribute("/", "created", info.created);

@@ -5,7 +5,9 @@
 // k = layer 1 (top) .. nk; C and S are fractions, NaN = undefined):
 //   /      attrs software, command, created, result_file, seed, scene_hash, snapshot, snapshot_time_s,
 //          surface_z_m (+ _source), paste_density_kg_m3 (+ _source), solids_fraction (+ _source),
-//          rock_density_source, K_kg_m3 (NaN = unknown) + K_source, rho_s_kg_m3, e_f, unmixed_rule, notes
+//          rock_density_source, K_kg_m3 (NaN = unknown) + K_source, rho_s_kg_m3, e_f, unmixed_rule, notes,
+//          state ("at rest" | "NOT AT REST (--allow-moving)"), at_rest (0/1), moving_mass_kg, in_flight_mass_kg,
+//          max_speed_m_s, moving_speed_limit_m_s, moving_mass_limit_kg (maps/motion.h)
 //   /grid  attrs origin_x_m, origin_y_m, count_i, count_j, layers, size_x_m, size_y_m, layer_thickness_m,
 //          top_open (1: rock above the surface counts in layer 1)
 //   /blocks/{C, S, S_raw, flag (int32, lab::SFlag), rock_mass_kg, rock_volume_m3, rock_volume_submerged_m3,
@@ -20,6 +22,7 @@
 #include <string>
 
 #include "analysis/maps/mixing_map.h"
+#include "analysis/maps/motion.h"
 #include "analysis/maps/result_file.h"
 
 namespace pastemix::analysis {
@@ -30,7 +33,7 @@ struct MapsProvenance {
 };
 
 void write_maps_h5(const std::filesystem::path& path, const MixingMap& map, const MixingInputs& in,
-                   const ResultSnapshot& result, const MapsProvenance& info);
+                   const ResultSnapshot& result, const MapsProvenance& info, const StateMark& state = {});
 
 // The printed summary of a map: accounting and C / S per layer (rows j = nj..1, columns i = 1..ni).
 std::string maps_table(const MixingMap& map, const ResultSnapshot& result, const MixingInputs& in,

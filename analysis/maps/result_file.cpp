@@ -90,6 +90,19 @@ ResultSnapshot read_result(const fs::path& path, const ResultOverrides& over) {
                        fmt::format("particle {}: radius must be positive, got {}", p, r.radius[p]));
   }
 
+  if (h5.exists(g + "/velocity")) {
+    const auto vel = h5.read_doubles(g + "/velocity");
+    if (vel.size() != 3 * n)
+      throw InputError(file, 0, fmt::format("dataset '{}/velocity'", g), fmt::format("expected {} x 3 values", n));
+    r.velocity.resize(n);
+    for (std::size_t p = 0; p < n; ++p) {
+      r.velocity[p] = {vel[3 * p], vel[3 * p + 1], vel[3 * p + 2]};
+      for (double c : r.velocity[p])
+        if (!std::isfinite(c))
+          throw InputError(file, 0, fmt::format("dataset '{}/velocity'", g), fmt::format("particle {} is not finite", p));
+    }
+  }
+
   // Material densities.
   const auto names = h5.exists("/materials") ? h5.read_strings("/materials") : std::vector<std::string>{};
   std::vector<double> rho;

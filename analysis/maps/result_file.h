@@ -3,6 +3,7 @@
 //
 // Read from the file:
 //   /snapshots/NNNNNN/{position (N x 3, m), radius (N, m), material (N)}   the chosen (default: last) snapshot
+//                     velocity (N x 3, m/s) when present: whether the state is at rest (maps/motion.h)
 //   /materials (M names), /material_density (M, kg/m3)                      rock density per material
 //   root attributes seed, scene_hash; fluid_surface_z (m), fluid_density (kg/m3), fluid_solids_fraction (-)
 //   /escaped/{time (s), mass (kg)}   particles removed at the domain boundary ([domain] on_exit = "remove"):
@@ -48,6 +49,7 @@ struct ResultSnapshot {
   double time_s = 0.0;              // its time
   std::vector<std::array<double, 3>> position;  // m
   std::vector<double> radius;                   // m
+  std::vector<std::array<double, 3>> velocity;  // m/s (empty when the snapshot has none: motion unknown)
   std::vector<double> density;                  // kg/m3 per particle (from its material)
   double escaped_mass = 0.0;                    // kg, removed at the domain boundary up to time_s
   std::size_t escaped_count = 0;

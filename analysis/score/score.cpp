@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "analysis/score/score.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -136,6 +137,17 @@ Score score_against_lab(const LabCase& lab, const std::vector<MixingMap>& maps, 
   }
   for (const auto& v : per_layer) s.model_layer_rock.push_back(summarize(v));
   s.model_deep_share = summarize(shares);
+  for (int k = 0; k < lab::kLayers; ++k) {
+    LayerHeadline h;
+    h.k = k + 1;
+    h.lab = s.lab_layer_rock[static_cast<std::size_t>(k)];
+    h.model = s.model_layer_rock[static_cast<std::size_t>(k)];
+    h.rel_error = h.lab > 0.0 ? (h.model.mean - h.lab) / h.lab : std::nan("");
+    h.tolerance = std::max({kLayerRelTolerance * h.lab, 2.0 * h.model.sd, kLayerAbsTolerance});
+    h.matched = std::abs(h.model.mean - h.lab) <= h.tolerance;
+    s.layers_matched += h.matched;
+    s.headline.push_back(h);
+  }
   return s;
 }
 

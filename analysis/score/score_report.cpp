@@ -50,10 +50,47 @@ std::string kg(const Summary& m, int n) {
 
 }  // namespace
 
+std::string headline_table(const Score& s) {
+  const int n = static_cast<int>(s.realizations.size());
+  std::string o = fmt::format("HEADLINE: mixing case {}, {} realization{} (seed{} {}), {}\n", s.case_id, n,
+                              n == 1 ? "" : "s", n == 1 ? "" : "s", seeds_of(s),
+                              s.all_at_rest() ? "scored at rest"
+                                              : "NOT AT REST (--allow-moving): an unfinished state, not a result");
+  o += "rock per layer (kg, sum of the layer's 12 blocks): lab, model, relative error, tolerance, matched\n";
+  for (const auto& h : s.headline)
+    o += fmt::format("  layer {}: lab {:.4f}  model {}  {:>7}  +-{:.4f}  {}\n", h.k, h.lab,
+                     n > 1 ? fmt::format("{:.4f} +- {:.4f}", h.model.mean, h.model.sd) : fmt::format("{:.4f}", h.model.mean),
+                     std::isfinite(h.rel_error) ? fmt::format("{:+.1f} %", 100 * h.rel_error) : std::string("n/a"),
+                     h.tolerance, h.matched ? "yes" : "NO");
+  o += fmt::format("  {} of {} layers matched (tolerance: max(15 % of the lab's layer mass, 2 model sd, 10 g); the lab's "
+                   "noise floor: one specimen per case, its 36 blocks recovered 0.85-1.02 kg of the 1 kg poured; this "
+                   "case {:.3f} kg)\n",
+                   s.layers_matched, s.headline.size(), s.lab_recovered_rock);
+  o += fmt::format("deep share (rock in layers 2-3 / rock in all blocks): lab {} %, model {} %{}\n",
+                   pct(s.lab_deep_share), pct(s.model_deep_share.mean),
+                   n > 1 ? fmt::format(" +- {}", pct(s.model_deep_share.sd)) : std::string());
+  o += "centre column C % (mean of M_22k and M_32k), layers 1 / 2 / 3:";
+  std::vector<std::string> lab, model;
+  for (const auto& c : s.centre) {
+    lab.push_back(pct(c.lab_C));
+    model.push_back(pct(c.model_C));
+  }
+  o += fmt::format(" lab {}, model {} (centre-column MAE {:.2f} pp)\n", fmt::join(lab, " / "), fmt::join(model, " / "),
+                   s.centre_mae_pp);
+  const char* verdict = s.model_cone == s.lab_cone ? (s.lab_cone ? "reproduced" : "agrees (no cone in either)")
+                        : (s.lab_cone ? "NOT reproduced" : "the model has a cone the lab does not");
+  o += fmt::format("unmixed cone (C >= 90 % in M_221 and M_321): model {} ({} %, {} %), lab {} ({} %, {} %): {}\n",
+                   s.model_cone ? "yes" : "no", pct(s.cone_221), pct(s.cone_321), s.lab_cone ? "yes" : "no",
+                   pct(s.lab_cone_221), pct(s.lab_cone_321), verdict);
+  o += fmt::format("mean absolute C error: {:.2f} pp over {} blocks (details below)\n\n", s.mae_pp, s.blocks_compared);
+  return o;
+}
+
 std::string score_table(const Score& s) {
   const int n = static_cast<int>(s.realizations.size());
-  std::string o = fmt::format("score: mixing case {} vs {} realization{} (seed{} {})\n", s.case_id, n,
-                              n == 1 ? "" : "s", n == 1 ? "" : "s", seeds_of(s));
+  std::string o = headline_table(s);
+  o += fmt::format("score: mixing case {} vs {} realization{} (seed{} {})\n", s.case_id, n,
+                   n == 1 ? "" : "s", n == 1 ? "" : "s", seeds_of(s));
   o += s.top_open ? "rock above the final surface counts in the layer-1 block under it (the lab cut the unmixed cone "
                     "with layer 1: its blocks recovered 0.85-1.02 kg of the 1 kg poured)\n"
                   : "rock above the final surface is in no block (--above-surface none)\n";
@@ -121,6 +158,40 @@ std::string score_toml(const Score& s, const std::string& software, const std::s
                    toml_string(command), toml_string(created), toml_string(lab_h5), s.case_id);
   o += fmt::format("K_kg_m3 = {}\nK_source = {}\nrealizations = {}\n\n", toml_number(s.K), toml_string(s.K_source),
                    s.realizations.size());
+  o += "[headline]  # did the rock go where the lab found it? (analysis/score/score.h)\n";
+  o += fmt::format("state = {}\nlayers_matched = {}\nlayer_tolerance_rule = {}\n",
+                   toml_string(s.all_at_rest() ? "at rest" : "NOT AT REST (--allow-moving)"), s.layers_matched,
+                   toml_string("max(15 % of the lab's layer mass, 2 model sd, 10 g): the lab's 36 blocks recovered "
+                               "0.85-1.02 kg of the 1 kg poured, one specimen per case"));
+  {
+    std::vector<std::string> lab, mean, sd, rel, tol, ok;
+    for (const auto& h : s.headline) {
+      lab.push_back(toml_number(h.lab));
+      mean.push_back(toml_number(h.model.mean));
+      sd.push_back(toml_number(h.model.sd));
+      rel.push_back(toml_number(h.rel_error));
+      tol.push_back(toml_number(h.tolerance));
+      ok.push_back(h.matched ? "true" : "false");
+    }
+    o += fmt::format("lab_layer_rock_kg = [{}]\nmodel_layer_rock_kg = [{}]\nmodel_layer_rock_sd_kg = [{}]\n"
+                     "layer_rel_error = [{}]\nlayer_tolerance_kg = [{}]\nlayer_matched = [{}]\n",
+                     fmt::join(lab, ", "), fmt::join(mean, ", "), fmt::join(sd, ", "), fmt::join(rel, ", "),
+                     fmt::join(tol, ", "), fmt::join(ok, ", "));
+  }
+  o += fmt::format("lab_deep_share = {}\nmodel_deep_share = {}\nmodel_deep_share_sd = {}\n",
+                   toml_number(s.lab_deep_share), toml_number(s.model_deep_share.mean),
+                   toml_number(s.model_deep_share.sd));
+  {
+    std::vector<std::string> lab, model;
+    for (const auto& c : s.centre) {
+      lab.push_back(toml_number(100 * c.lab_C));
+      model.push_back(toml_number(100 * c.model_C));
+    }
+    o += fmt::format("centre_lab_C_percent = [{}]\ncentre_model_C_percent = [{}]\n", fmt::join(lab, ", "),
+                     fmt::join(model, ", "));
+  }
+  o += fmt::format("cone_model = {}\ncone_lab = {}\ncone_reproduced = {}\n\n", s.model_cone, s.lab_cone,
+                   s.model_cone && s.lab_cone);
   o += "[score]\n";
   o += fmt::format("C_mean_abs_error_pp = {}\nC_max_abs_error_pp = {}\nblocks_compared = {}\n", toml_number(s.mae_pp),
                    toml_number(s.max_abs_error_pp), s.blocks_compared);
@@ -175,6 +246,9 @@ std::string score_toml(const Score& s, const std::string& software, const std::s
     o += fmt::format("file = {}\nseed = {}\nscene_hash = {}\nsnapshot = {}\ntime_s = {}\nC_mean_abs_error_pp = {}\n",
                      toml_string(r.path), r.seed, toml_string(r.scene_hash), r.snapshot, toml_number(r.time_s),
                      toml_number(r.mae_pp));
+    o += fmt::format("at_rest = {}\nmoving_mass_kg = {}\nin_flight_mass_kg = {}\nmax_speed_m_s = {}\n",
+                     r.state.at_rest, toml_number(r.state.moving_mass), toml_number(r.state.in_flight_mass),
+                     toml_number(r.state.max_speed));
   }
   return o;
 }

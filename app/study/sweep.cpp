@@ -127,10 +127,18 @@ RunCost run_once(const model::SceneDoc& doc, const std::string& qoi_name, const 
                      fmt::format("{:g} s is longer than end_time {:g} s: the run would take no step", s.config.dt,
                                  s.end_time));
   double best = -1e300;
+  model::RestMonitor rest(s.stop, s.config.dt, n);  // [stop] rule = "at_rest" ends the run early
   for (long k = 0; k < n; ++k) {
     w.step();
     if (k % 50 == 0) w.check();
     if (q.max_over_steps) best = std::max(best, q.eval(w));
+    if (rest.check(w, k + 1)) break;
+  }
+  if (s.stop.at_rest && !rest.fired()) {
+    const model::MotionCensus c = model::census(w, s.stop);
+    throw RuntimeFailure(fmt::format("end_time {:g} s reached before the rock came to rest: {:.4g} g moving faster "
+                                     "than {:g} m/s (a failed point: raise end_time)",
+                                     s.end_time, 1e3 * c.moving_mass, s.stop.speed));
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!save_h5.empty()) {
@@ -143,7 +151,7 @@ RunCost run_once(const model::SceneDoc& doc, const std::string& qoi_name, const 
     }
     staged.commit();
   }
-  return {q.max_over_steps ? best : q.eval(w), wall, static_cast<double>(n) * static_cast<double>(s.particles.size()),
+  return {q.max_over_steps ? best : q.eval(w), wall, static_cast<double>(w.steps()) * static_cast<double>(s.particles.size()),
           s.particles.size()};
 }
 

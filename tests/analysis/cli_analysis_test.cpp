@@ -11,6 +11,7 @@
 
 #include "analysis/maps/mixing_map.h"
 #include "analysis/maps/result_file.h"
+#include "analysis/score/score.h"
 #include "base/rng.h"
 #include "tests/analysis/result_fixture.h"
 #include "tests/run_command.h"
@@ -161,4 +162,71 @@ TEST_CASE("cli: repose measures the last snapshot of result files, with the mean
   const auto bad = run_pastemix("repose " + f.p("text.h5"));
   CHECK(bad.exit_code == 2);
   CHECK(bad.output.find("text.h5") != std::string::npos);
+}
+
+TEST_CASE("cli: maps and score refuse a state that is not at rest, and --allow-moving marks it") {
+  Fixture f("cli_moving");
+  auto s = rock_result(0.010);
+  s.velocity = {{0.0, 0.0, -0.5}};  // the 10 mm sphere (11.56 g at 2760 kg/m3, centre below the surface) still sinks
+  s.velocity.push_back({0.0, 0.0, 0.0});
+  s.velocity.push_back({0.0, 0.0, 0.0});
+  s.velocity.push_back({0.0, 0.005, 0.0});  // below the 0.01 m/s limit: at rest
+  write_result(f.dir / "moving.h5", s);
+  const double moving_g = 1e3 * 2760.0 * 4.0 / 3.0 * M_PI * 1e-6;
+  f.expect_bad("maps " + f.p("moving.h5"), {"moving.h5", "not at rest", fmt::format("{:.4g} g of rock moving", moving_g),
+                                             "--allow-moving", "at_rest"});
+  f.expect_bad("score " + f.p("moving.h5") + " --lab 3 --lab-h5 " + f.p("lab.h5"), {"moving.h5", "not at rest"});
+  // A raised limit accepts it; --allow-moving maps it, marked in the output, maps.h5 and score.toml.
+  auto r = run_pastemix("maps " + f.p("moving.h5") + " --moving-mass 12 --out " + f.p("limit"));
+  INFO(r.output);
+  CHECK(r.exit_code == 0);
+  r = run_pastemix("maps " + f.p("moving.h5") + " --allow-moving --out " + f.p("allowed"));
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.output.find("NOT AT REST") != std::string::npos);
+  pastemix::H5Reader h5(f.dir / "allowed" / "maps.h5");
+  CHECK(h5.attribute_int("/", "at_rest") == 0);
+  CHECK(h5.attribute_double("/", "moving_mass_kg") == doctest::Approx(1e-3 * moving_g).epsilon(1e-9));
+  r = run_pastemix("score " + f.p("moving.h5") + " --allow-moving --lab 3 --lab-h5 " + f.p("lab.h5") + " --out " +
+                   f.p("scored"));
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.output.find("HEADLINE: mixing case 3, 1 realization (seed 7), NOT AT REST") != std::string::npos);
+  CHECK(read_text(f.dir / "scored" / "score.toml").find("state = \"NOT AT REST (--allow-moving)\"") !=
+        std::string::npos);
+  // A snapshot without velocities: unknown motion is refused too.
+  s.velocities = false;
+  write_result(f.dir / "novel.h5", s);
+  f.expect_bad("maps " + f.p("novel.h5"), {"novel.h5", "no velocities"});
+}
+
+TEST_CASE("cli: the score's headline comes first and its per-layer masses sum to the blocks' total") {
+  Fixture f("cli_headline");
+  const auto r = run_pastemix(fmt::format("score {} {} --lab 3 --lab-h5 {} --out {}", f.p("r1.h5"), f.p("r2.h5"),
+                                          f.p("lab.h5"), f.p("out")));
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.output.find("HEADLINE: mixing case 3, 2 realizations (seeds 7, 8), scored at rest") <
+        r.output.find("mean absolute C error: 0"));
+  // The lab grid is r1's own map: every layer matches, with r2's spread in the tolerance.
+  CHECK(r.output.find("3 of 3 layers matched") != std::string::npos);
+  const std::string toml = read_text(f.dir / "out" / "score.toml");
+  CHECK(toml.find("[headline]") < toml.find("[score]"));
+  // Per-layer sums against the maps' blocks, per realization.
+  for (const char* name : {"r1.h5", "r2.h5"}) {
+    const auto res = read_result(f.dir / name, {});
+    MixingInputs in;
+    in.surface_z = 0.10;
+    in.paste_density = 1843;
+    in.solids_fraction = 0.75;
+    in.K = 3570;
+    const MixingMap m = mixing_map(in, ParticleView{res.position, res.radius, res.density});
+    double blocks = 0.0;
+    for (double x : m.rock_mass) blocks += x;
+    const auto s = score_against_lab(read_lab_case(f.dir / "lab.h5", 3, true), {m}, {Realization{}});
+    double layers = 0.0;
+    for (const auto& h : s.headline) layers += h.model.mean;
+    CHECK(layers == doctest::Approx(blocks).epsilon(1e-12));
+    CHECK(blocks > 0.0);
+  }
 }

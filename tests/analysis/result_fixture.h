@@ -31,6 +31,9 @@ struct ResultSpec {
   double surface_z = 0.10, paste_density = 1843.0, solids = 0.75;
   // Spheres removed at the domain boundary (model/output.h /escaped): removal time (s) and mass (kg).
   std::vector<std::array<double, 2>> escaped;
+  // Final-snapshot velocities (m/s) per sphere; empty: all at rest. `velocities = false` writes none.
+  std::vector<std::array<double, 3>> velocity;
+  bool velocities = true;
 };
 
 inline void write_result(const std::filesystem::path& path, const ResultSpec& s) {
@@ -67,6 +70,14 @@ inline void write_result(const std::filesystem::path& path, const ResultSpec& s)
     h5.write(g + "/radius", r, {n});
     h5.write(g + "/id", id, {n});
     h5.write(g + "/material", mat, {n});
+    if (s.velocities) {
+      std::vector<double> v(3 * n, 0.0);
+      for (std::size_t p = 0; p < s.velocity.size() && p < n; ++p)
+        for (int c = 0; c < 3; ++c) v[3 * p + static_cast<std::size_t>(c)] = snap == 0 ? -1.0 : s.velocity[p][static_cast<std::size_t>(c)];
+      if (snap == 0)
+        for (std::size_t p = 0; p < n; ++p) v[3 * p + 2] = -1.0;  // snapshot 0 is still falling
+      h5.write(g + "/velocity", v, {n, 3});
+    }
     h5.attribute(g, "time_s", 0.5 * snap);
   }
   h5.write("/snapshots/time", std::vector<double>{0.0, 0.5});

@@ -3,6 +3,7 @@
 // PSD-cut edit, and the command's outputs.
 #include "app/study/sweep.h"
 
+#include <sstream>
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -89,6 +90,27 @@ TEST_CASE("a run that blows up is a failed point, not the end of the sweep; --jo
   // A step longer than the run is a bad setting (exit 2 from the command), not a point with no steps.
   o.values = {2e-4};
   CHECK_THROWS_AS(sweep(base, o), InputError);
+}
+
+TEST_CASE("a run with the at-rest [stop] rule that reaches end_time before rest is a failed point") {
+  // The two spheres fly apart at 10 m/s after the impact: never at rest within end_time.
+  std::ifstream in(test::source_path("datasets/scenes/hertz_impact_m3.toml"));
+  std::stringstream text;
+  text << in.rdbuf() << "\n[stop]\nrule = \"at_rest\"\ncheck_interval = 1e-5\n";
+  const auto base = model::SceneDoc::parse(text.str(), "impact_at_rest.toml");
+  SweepOptions o;
+  o.vary = "dt";
+  o.qoi = "max_overlap";
+  o.values = {8e-7, 4e-7};
+  o.quiet = true;
+  try {
+    sweep(base, o);
+    FAIL("the sweep should have failed");
+  } catch (const RuntimeFailure& e) {
+    // Every point failed: the sweep reports the first failure, with the moving mass.
+    CHECK(std::string(e.what()).find("end_time 8e-05 s reached before the rock came to rest") != std::string::npos);
+    CHECK(std::string(e.what()).find("g moving faster than 0.01 m/s") != std::string::npos);
+  }
 }
 
 TEST_CASE("pastemix sweep writes the table, CSV, override file - a bad --qoi is exit 2") {

@@ -1,0 +1,48 @@
+// SPDX-License-Identifier: MIT
+#include "analysis/maps/motion.h"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "base/units.h"
+
+namespace pastemix::analysis {
+
+Motion motion_of(const ResultSnapshot& r, const MotionLimits& limits) {
+  Motion m;
+  m.limits = limits;
+  m.known = !r.velocity.empty();
+  for (std::size_t p = 0; p < r.velocity.size(); ++p) {
+    const auto& v = r.velocity[p];
+    const double speed = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    m.max_speed = std::max(m.max_speed, speed);
+    if (speed <= limits.speed) continue;
+    const double mass = r.density[p] * 4.0 / 3.0 * units::pi * r.radius[p] * r.radius[p] * r.radius[p];
+    m.moving_mass += mass;
+    ++m.moving_count;
+    if (r.position[p][2] > r.surface_z.value) m.in_flight_mass += mass;
+  }
+  return m;
+}
+
+std::string Motion::line(const ResultSnapshot& r) const {
+  if (!known) return fmt::format("state at t = {:g} s: unknown (the snapshot has no velocities)\n", r.time_s);
+  return fmt::format("state at t = {:g} s: {} ({:.4g} g of rock moving faster than {:g} m/s in {} particles, "
+                     "{:.4g} g of it in flight above the paste surface; max speed {:.3g} m/s; limit {:g} g)\n",
+                     r.time_s, at_rest() ? "at rest" : "NOT AT REST", 1e3 * moving_mass, limits.speed, moving_count,
+                     1e3 * in_flight_mass, max_speed, 1e3 * limits.mass_limit);
+}
+
+std::string Motion::refusal(const ResultSnapshot& r) const {
+  const std::string what =
+      known ? fmt::format("the state at t = {:g} s is not at rest: {:.4g} g of rock moving faster than {:g} m/s ({} "
+                          "particles, max {:.3g} m/s), {:.4g} g of it in flight above the paste surface (limit {:g} g)",
+                          r.time_s, 1e3 * moving_mass, limits.speed, moving_count, max_speed, 1e3 * in_flight_mass,
+                          1e3 * limits.mass_limit)
+            : fmt::format("the snapshot at t = {:g} s has no velocities, so whether it is at rest is unknown", r.time_s);
+  return what + ". Run the scene to rest ([stop] rule = \"at_rest\", model/stop_rule.h) or pass --allow-moving for an "
+                "explicit look at an unfinished state (marked as such in every output)";
+}
+
+}  // namespace pastemix::analysis
