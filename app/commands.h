@@ -26,6 +26,8 @@ void register_model_commands(CLI::App& app);
 void register_analysis_commands(CLI::App& app);
 // `pastemix validate ...`, `pastemix calibrate viscosity` (fluid, app/cmd_fluid.cpp).
 void register_fluid_commands(CLI::App& app);
+// `pastemix validate flow ...`, `pastemix flow run` (the flow solver, app/cmd_flow.cpp).
+void register_flow_commands(CLI::App& app);
 // `pastemix sweep` (app/cmd_study.cpp).
 void register_study_commands(CLI::App& app);
 

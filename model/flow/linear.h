@@ -1,0 +1,104 @@
+// SPDX-License-Identifier: MIT
+// The two linear solves of a flow step (the implicit viscous step and the pressure projection), both
+// symmetric positive definite and solved by Eigen's conjugate gradients with a Jacobi preconditioner.
+//
+// Why Jacobi and not incomplete Cholesky: both matrices change every step (the interface moves), so a
+// factorisation would be rebuilt each step, and its triangular solves are serial; Jacobi is set up for free,
+// and Eigen runs the row-major sparse product of each iteration on all threads. Every row is summed by one
+// thread in a fixed order and the dot products are serial, so the result does not depend on the thread count.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include <Eigen/SparseCore>
+
+#include "model/flow/advection.h"
+#include "model/flow/grid.h"
+
+namespace pastemix::flow {
+
+struct SolveStats {
+  int iterations = 0;
+  double relative_residual = 0.0;  // ||b - A x|| / ||b|| at exit (0 for b = 0)
+};
+
+using Matrix = Eigen::SparseMatrix<double, Eigen::RowMajor, long>;
+
+// Implicit viscous step with the velocity components coupled:
+//   rho_f (u_new - u) / dt = div(2 mu D(u_new))
+// D the symmetric strain rate; mu per cell (Pa s): normal stresses use the cell's viscosity, shear stresses the
+// harmonic mean of the cells around their edge. Walls: no-slip (a ghost value gives the wall velocity at the
+// wall), free-slip and open sides carry no shear. Solved in place to `tol`; throws RuntimeFailure if not reached.
+SolveStats viscous_step(const Grid& g, double dt, const Faces& rho_face, const std::vector<double>& mu_cell,
+                        Faces& u, double tol, int max_iterations);
+
+// The same, with the stencils built once for a grid (the solver keeps one; viscous_step builds one per call).
+class ViscousOperator {
+ public:
+  explicit ViscousOperator(const Grid& g);
+  SolveStats solve(double dt, const Faces& rho_face, const std::vector<double>& mu_cell, Faces& u, double tol,
+                   int max_iterations);
+
+ private:
+  struct Term {
+    long cell_begin;
+    int cell_count;
+    double scale;
+    bool harmonic;
+    long dof_begin;
+    int dof_count;
+    long fixed_begin;
+    int fixed_count;
+    double b;  // 1/s, the wall velocities' part of the strain rate
+  };
+  struct Fixed {
+    int c;
+    long face;
+    double coef;
+  };
+  Grid g_;
+  std::array<std::vector<long>, 3> dof_;
+  long size_ = 0;
+  std::vector<Term> terms_;
+  std::vector<long> wcells_, dofs_, positions_, diagonal_;
+  std::vector<double> coefs_;
+  std::vector<Fixed> fixed_;
+  Matrix M_;
+};
+
+// Pressure projection: solves div((dt / rho_f) grad p) = div u (p in Pa, 0 on an open side; in a closed box
+// cell 0 is pinned to 0 exactly) and sets u -= (dt / rho_f) grad p. `p` is the initial guess and the result.
+struct ProjectionStats {
+  SolveStats solve;
+  double divergence_before = 0.0;  // ||div u*||_2 (1/s), before
+  double divergence_after = 0.0;   // ||div u||_2 (1/s), after
+  double max_volume_loss = 0.0;    // max over cells of |div u| dt: fraction of a cell's volume per step
+};
+ProjectionStats project(const Grid& g, double dt, const Faces& rho_face, Faces& u, std::vector<double>& p, double tol,
+                        int max_iterations);
+
+// The same, with the matrix pattern built once for a grid (the solver keeps one).
+class PressureOperator {
+ public:
+  explicit PressureOperator(const Grid& g);
+  ProjectionStats project(double dt, const Faces& rho_face, Faces& u, std::vector<double>& p, double tol,
+                          int max_iterations);
+
+ private:
+  struct Link {
+    int c;
+    long face, a, b;           // the face's cells (-1: outside, an open side)
+    long paa, pbb, pab, pba;   // value positions
+  };
+  Grid g_;
+  std::vector<Link> links_;
+  bool open_ = false;
+  long pin_ = 0;
+  Matrix A_;
+};
+
+// Discrete divergence of u per cell (1/s).
+std::vector<double> divergence(const Grid& g, const Faces& u);
+
+}  // namespace pastemix::flow

@@ -1,0 +1,185 @@
+// SPDX-License-Identifier: MIT
+#include "model/flow/solver.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "base/error.h"
+
+namespace pastemix::flow {
+
+FlowSolver::FlowSolver(const Grid& grid, Phases phases, FlowSettings settings)
+    : g_((grid.check(), grid)), ph_(std::move(phases)), s_(settings), viscous_(g_), pressure_(g_) {
+  if (!(s_.cfl > 0.0 && s_.cfl <= 0.5)) throw std::invalid_argument("flow: cfl must be in (0, 0.5]");
+  for (int c = 0; c < 3; ++c) u_[c].assign(g_.face_count(c), 0.0);
+  p_.assign(g_.cell_count(), 0.0);
+  alpha_.assign(g_.cell_count(), 0.0);
+  mu_.assign(g_.cell_count(), ph_.eta_air);
+}
+
+void FlowSolver::add_paste_box(const std::array<double, 3>& lo, const std::array<double, 3>& hi) {
+  for (int k = 0; k < g_.n[2]; ++k)
+    for (int j = 0; j < g_.n[1]; ++j)
+      for (int i = 0; i < g_.n[0]; ++i) {
+        const std::array<int, 3> q{i, j, k};
+        double f = 1.0;
+        for (int d = 0; d < 3; ++d) {
+          const double a = g_.origin[d] + q[d] * g_.h[d], b = a + g_.h[d];
+          f *= std::max(0.0, std::min(b, hi[d]) - std::max(a, lo[d])) / g_.h[d];
+        }
+        double& al = alpha_[g_.cell(q)];
+        al = std::min(1.0, al + f);
+      }
+  update_viscosity({});
+}
+
+void FlowSolver::set_alpha(std::vector<double> alpha) {
+  if (alpha.size() != alpha_.size()) throw std::invalid_argument("flow: alpha has the wrong size");
+  alpha_ = std::move(alpha);
+  update_viscosity({});
+}
+
+double FlowSolver::next_time_step() const {
+  double rate = 0.0;  // max |u_d| / h_d, 1/s
+  for (int c = 0; c < 3; ++c)
+    for (double v : u_[c]) rate = std::max(rate, std::abs(v) / g_.h[c]);
+  double dt = s_.max_time_step;
+  if (rate > 0.0) dt = std::min(dt, s_.cfl / rate);
+  // From rest, gravity alone brings a face to the CFL bound in sqrt(cfl h / g): the step after is limited again.
+  const double gmag = std::hypot(s_.gravity[0], s_.gravity[1], s_.gravity[2]);
+  if (gmag > 0.0) dt = std::min(dt, std::sqrt(s_.cfl * std::min({g_.h[0], g_.h[1], g_.h[2]}) / gmag));
+  return dt;
+}
+
+std::vector<double> FlowSolver::strain_rate() const {
+  // Cell-centred velocity gradient: diagonal from the cell's faces, off-diagonal by central differences of the
+  // face-averaged cell velocities (one-sided at walls). Enough for a lagged viscosity; the stresses themselves
+  // use the exact MAC stencils of the viscous operator.
+  const std::vector<double> uc = cell_velocity();
+  std::vector<double> out(g_.cell_count(), 0.0);
+#pragma omp parallel for schedule(static)
+  for (int k = 0; k < g_.n[2]; ++k)
+    for (int j = 0; j < g_.n[1]; ++j)
+      for (int i = 0; i < g_.n[0]; ++i) {
+        const std::array<int, 3> q{i, j, k};
+        double G[3][3];
+        for (int c = 0; c < 3; ++c)
+          for (int d = 0; d < 3; ++d) {
+            if (c == d) {
+              std::array<int, 3> hi = q;
+              hi[c] = g_.periodic(c) ? (q[c] + 1) % g_.n[c] : q[c] + 1;
+              G[c][c] = (u_[c][g_.face(c, hi)] - u_[c][g_.face(c, q)]) / g_.h[c];
+              continue;
+            }
+            std::array<int, 3> a = q, b = q;
+            a[d] = g_.clamp_cell(d, q[d] - 1);
+            b[d] = g_.clamp_cell(d, q[d] + 1);
+            const double span = (g_.periodic(d) ? 2 : (b[d] - a[d])) * g_.h[d];
+            G[c][d] = span > 0.0 ? (uc[3 * g_.cell(b) + c] - uc[3 * g_.cell(a) + c]) / span : 0.0;
+          }
+        double dd = 0.0;  // 2 D:D
+        for (int c = 0; c < 3; ++c)
+          for (int d = 0; d < 3; ++d) {
+            const double e = 0.5 * (G[c][d] + G[d][c]);
+            dd += 2.0 * e * e;
+          }
+        out[g_.cell(q)] = std::sqrt(dd);
+      }
+  return out;
+}
+
+void FlowSolver::update_viscosity(const std::vector<double>& gamma) {
+  const Rheology& law = *ph_.paste;
+  for (long c = 0; c < g_.cell_count(); ++c) {
+    const double a = std::clamp(alpha_[c], 0.0, 1.0);
+    const double eta = law.viscosity(gamma.empty() ? 0.0 : gamma[c]);
+    mu_[c] = a * eta + (1.0 - a) * ph_.eta_air;
+  }
+}
+
+StepStats FlowSolver::step(double dt) {
+  const auto t0 = std::chrono::steady_clock::now();
+  StepStats st;
+  st.dt = dt;
+  // The strain rate of the start of the step (a shear-dependent law is lagged by one step), the paste fraction
+  // after transport.
+  const std::vector<double> gamma = ph_.paste->shear_dependent() ? strain_rate() : std::vector<double>{};
+  st.advection = advect(g_, ph_, dt, totals_.steps, alpha_, u_);
+  const Faces rho = face_densities(g_, ph_, alpha_);
+  update_viscosity(gamma);
+  st.viscous = viscous_.solve(dt, rho, mu_, u_, s_.viscous_tolerance, s_.max_iterations);
+  for (int c = 0; c < 3; ++c) {
+    if (s_.gravity[c] == 0.0) continue;
+    const auto fd = g_.face_dims(c);
+    for (int k = 0; k < fd[2]; ++k)
+      for (int j = 0; j < fd[1]; ++j)
+        for (int i = 0; i < fd[0]; ++i) {
+          const std::array<int, 3> q{i, j, k};
+          if (g_.boundary_face(c, q[c]) && g_.side(c, q[c] == 0 ? 0 : 1).type != BoundaryType::open) continue;
+          u_[c][g_.face(c, q)] += s_.gravity[c] * dt;
+        }
+  }
+  st.projection = pressure_.project(dt, rho, u_, p_, s_.pressure_tolerance, s_.max_iterations);
+  for (int c = 0; c < 3; ++c)
+    for (double v : u_[c])
+      if (!std::isfinite(v))
+        throw RuntimeFailure(fmt::format("flow: non-finite velocity at t = {:.6g} s (step {})", t_, totals_.steps));
+  t_ += dt;
+  ++totals_.steps;
+  totals_.pressure_iterations += st.projection.solve.iterations;
+  totals_.viscous_iterations += st.viscous.iterations;
+  totals_.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  last_ = st;
+  return st;
+}
+
+long FlowSolver::advance_to(double t) {
+  long n = 0;
+  while (t_ < t * (1.0 - 1e-14)) {
+    double dt = next_time_step();
+    // Land on t; avoid leaving a sliver step behind.
+    if (t_ + dt >= t) dt = t - t_;
+    else if (t_ + 1.5 * dt > t) dt = 0.5 * (t - t_);
+    step(dt);
+    ++n;
+  }
+  return n;
+}
+
+double FlowSolver::paste_volume() const {
+  double sum = 0.0, comp = 0.0;  // Kahan
+  for (double a : alpha_) {
+    const double y = a - comp, s = sum + y;
+    comp = (s - sum) - y;
+    sum = s;
+  }
+  return sum * g_.cell_volume();
+}
+
+double FlowSolver::max_speed() const {
+  double m = 0.0;
+  for (int c = 0; c < 3; ++c)
+    for (double v : u_[c]) m = std::max(m, std::abs(v));
+  return m;
+}
+
+std::vector<double> FlowSolver::cell_velocity() const {
+  std::vector<double> out(3 * g_.cell_count());
+  for (int k = 0; k < g_.n[2]; ++k)
+    for (int j = 0; j < g_.n[1]; ++j)
+      for (int i = 0; i < g_.n[0]; ++i) {
+        const std::array<int, 3> q{i, j, k};
+        for (int c = 0; c < 3; ++c) {
+          std::array<int, 3> hi = q;
+          hi[c] = g_.periodic(c) ? (q[c] + 1) % g_.n[c] : q[c] + 1;
+          out[3 * g_.cell(q) + c] = 0.5 * (u_[c][g_.face(c, q)] + u_[c][g_.face(c, hi)]);
+        }
+      }
+  return out;
+}
+
+}  // namespace pastemix::flow

@@ -1,0 +1,241 @@
+// SPDX-License-Identifier: MIT
+// The viscous operator as the gradient of a discrete dissipation:
+//   Phi(u) = sum_cells 2 mu_cell sum_c e_cc^2 + sum_edges mu_edge gamma_cd^2,
+//   e_cc = du_c/dx_c (cell centre), gamma_cd = du_c/dx_d + du_d/dx_c (on the edge between faces),
+// and the force on face a is -1/2 dPhi/du_a. Each term is w (g . u + b)^2, so the matrix is sum w g g^T:
+// symmetric positive semi-definite by construction, with the components coupled through gamma_cd, and the
+// same stencil as div(2 mu D) on the MAC grid. (All terms carry the same cell volume, which cancels.)
+//
+// The terms' stencils depend on the grid only, so they are built once (ViscousOperator's constructor) with
+// the position of every product in the matrix's value array; a step only refills the values from the new
+// viscosities and densities. (Assembling from triplets each step took a third of a step.)
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/IterativeLinearSolvers>
+#include <Eigen/SparseCore>
+#include <fmt/format.h>
+
+#include "base/error.h"
+#include "model/flow/linear.h"
+
+namespace pastemix::flow {
+
+namespace {
+
+struct Entry {
+  int c;        // component
+  long face;    // Grid::face index
+  double coef;  // 1/m
+};
+
+// How a term's weight follows from the cell viscosities.
+struct Weight {
+  long cells[4];
+  int count = 0;
+  double scale = 1.0;     // 2 for a normal stress; the edge's volume share for a shear stress
+  bool harmonic = false;  // shear: the harmonic mean of the cells; normal: the one cell's viscosity
+};
+
+// Calls term(weight, entries, n, b) for every normal-stress term (one per cell and component).
+template <class T>
+void normal_terms(const Grid& g, T&& term) {
+  for (int k = 0; k < g.n[2]; ++k)
+    for (int j = 0; j < g.n[1]; ++j)
+      for (int i = 0; i < g.n[0]; ++i) {
+        const std::array<int, 3> q{i, j, k};
+        Weight w;
+        w.cells[0] = g.cell(q);
+        w.count = 1;
+        w.scale = 2.0;
+        for (int c = 0; c < 3; ++c) {
+          std::array<int, 3> hi = q;
+          hi[c] = g.periodic(c) ? (q[c] + 1) % g.n[c] : q[c] + 1;
+          const Entry e[2] = {{c, g.face(c, hi), 1.0 / g.h[c]}, {c, g.face(c, q), -1.0 / g.h[c]}};
+          term(w, e, 2, 0.0);
+        }
+      }
+}
+
+// One half of gamma_cd on an edge: du_a/dx_b from the two u_a faces either side of the edge along b.
+// Returns the share of a full edge volume the term stands for: 1 inside, 1/2 on a no-slip wall (its control
+// volume is the half cell between the wall and the first face), 0 on a free-slip or open side (no shear).
+double half_gradient(const Grid& g, int a, int b, std::array<int, 3> q, Entry* e, int& n, double& bconst) {
+  const int lo = g.wrap_cell(b, q[b] - 1), hi = g.wrap_cell(b, q[b]);
+  const double ih = 1.0 / g.h[b];
+  if (lo >= 0 && hi >= 0) {
+    q[b] = hi;
+    e[n++] = {a, g.face(a, q), ih};
+    q[b] = lo;
+    e[n++] = {a, g.face(a, q), -ih};
+    return 1.0;
+  }
+  const Boundary& wall = g.side(b, lo < 0 ? 0 : 1);
+  if (wall.type != BoundaryType::no_slip) return 0.0;
+  // Ghost u = 2 U_wall - u_inside: the wall's velocity holds at the wall, half a cell from the face.
+  const double uw = wall.wall_velocity[a];
+  if (lo < 0) {
+    q[b] = hi;
+    e[n++] = {a, g.face(a, q), 2.0 * ih};
+    bconst -= 2.0 * uw * ih;
+  } else {
+    q[b] = lo;
+    e[n++] = {a, g.face(a, q), -2.0 * ih};
+    bconst += 2.0 * uw * ih;
+  }
+  return 0.5;
+}
+
+template <class T>
+void shear_terms(const Grid& g, T&& term) {
+  for (int c = 0; c < 3; ++c)
+    for (int d = c + 1; d < 3; ++d) {
+      const int e = 3 - c - d;
+      const int nc = g.periodic(c) ? g.n[c] : g.n[c] + 1, nd = g.periodic(d) ? g.n[d] : g.n[d] + 1;
+      for (int ke = 0; ke < g.n[e]; ++ke)
+        for (int id = 0; id < nd; ++id)
+          for (int ic = 0; ic < nc; ++ic) {
+            std::array<int, 3> q{};
+            q[c] = ic;
+            q[d] = id;
+            q[e] = ke;
+            Entry en[4];
+            int n = 0;
+            double b = 0.0;
+            const double s1 = half_gradient(g, c, d, q, en, n, b);
+            const double s2 = half_gradient(g, d, c, q, en, n, b);
+            if (s1 * s2 == 0.0) continue;
+            Weight w;
+            w.scale = s1 * s2;
+            w.harmonic = true;
+            for (int sc = -1; sc <= 0; ++sc)
+              for (int sd = -1; sd <= 0; ++sd) {
+                std::array<int, 3> r = q;
+                r[c] = g.wrap_cell(c, ic + sc);
+                r[d] = g.wrap_cell(d, id + sd);
+                if (r[c] >= 0 && r[d] >= 0) w.cells[w.count++] = g.cell(r);
+              }
+            term(w, en, n, b);
+          }
+    }
+}
+
+}  // namespace
+
+ViscousOperator::ViscousOperator(const Grid& g) : g_(g) {
+  long next = 0;
+  for (int c = 0; c < 3; ++c) {
+    dof_[c].assign(g.face_count(c), -1);
+    const auto fd = g.face_dims(c);
+    for (int k = 0; k < fd[2]; ++k)
+      for (int j = 0; j < fd[1]; ++j)
+        for (int i = 0; i < fd[0]; ++i) {
+          const std::array<int, 3> q{i, j, k};
+          if (!g.boundary_face(c, q[c])) dof_[c][g.face(c, q)] = next++;
+        }
+  }
+  size_ = next;
+  std::vector<Eigen::Triplet<double, long>> trip;
+  auto collect = [&](const Weight& w, const Entry* e, int n, double b) {
+    terms_.push_back({static_cast<long>(wcells_.size()), w.count, w.scale, w.harmonic, static_cast<long>(dofs_.size()),
+                      0, static_cast<long>(fixed_.size()), 0, b});
+    Term& t = terms_.back();
+    for (int a = 0; a < w.count; ++a) wcells_.push_back(w.cells[a]);
+    for (int a = 0; a < n; ++a) {
+      const long d = dof_[e[a].c][e[a].face];
+      if (d < 0) {
+        fixed_.push_back({e[a].c, e[a].face, e[a].coef});
+        ++t.fixed_count;
+      } else {
+        dofs_.push_back(d);
+        coefs_.push_back(e[a].coef);
+        ++t.dof_count;
+      }
+    }
+    for (int a = 0; a < t.dof_count; ++a)
+      for (int c = 0; c < t.dof_count; ++c) trip.emplace_back(dofs_[t.dof_begin + a], dofs_[t.dof_begin + c], 1.0);
+  };
+  normal_terms(g, collect);
+  shear_terms(g, collect);
+  for (long d = 0; d < size_; ++d) trip.emplace_back(d, d, 1.0);
+  M_.resize(size_, size_);
+  M_.setFromTriplets(trip.begin(), trip.end());
+  M_.makeCompressed();
+  // The value index of each product, in the order the solve visits them.
+  auto position = [&](long row, long col) {
+    const long* begin = M_.innerIndexPtr() + M_.outerIndexPtr()[row];
+    const long* end = M_.innerIndexPtr() + M_.outerIndexPtr()[row + 1];
+    return static_cast<long>(std::lower_bound(begin, end, col) - M_.innerIndexPtr());
+  };
+  for (const Term& t : terms_)
+    for (int a = 0; a < t.dof_count; ++a)
+      for (int c = 0; c < t.dof_count; ++c) positions_.push_back(position(dofs_[t.dof_begin + a], dofs_[t.dof_begin + c]));
+  diagonal_.resize(size_);
+  for (long d = 0; d < size_; ++d) diagonal_[d] = position(d, d);
+}
+
+SolveStats ViscousOperator::solve(double dt, const Faces& rho_face, const std::vector<double>& mu, Faces& u, double tol,
+                                  int max_iterations) {
+  double* val = M_.valuePtr();
+  std::fill(val, val + M_.nonZeros(), 0.0);
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(size_), x(size_);
+  long pos = 0;
+  for (const Term& t : terms_) {
+    double w;
+    if (t.harmonic) {
+      double inv = 0.0;
+      for (int a = 0; a < t.cell_count; ++a) inv += 1.0 / mu[wcells_[t.cell_begin + a]];
+      w = t.scale * t.cell_count / inv;
+    } else {
+      w = t.scale * mu[wcells_[t.cell_begin]];
+    }
+    double b = t.b;
+    for (int a = 0; a < t.fixed_count; ++a) {
+      const Fixed& f = fixed_[t.fixed_begin + a];
+      b += f.coef * u[f.c][f.face];
+    }
+    for (int a = 0; a < t.dof_count; ++a) {
+      const double ca = coefs_[t.dof_begin + a];
+      rhs[dofs_[t.dof_begin + a]] -= w * b * ca;
+      for (int c = 0; c < t.dof_count; ++c) val[positions_[pos++]] += w * ca * coefs_[t.dof_begin + c];
+    }
+  }
+  for (int c = 0; c < 3; ++c)
+    for (long f = 0; f < static_cast<long>(u[c].size()); ++f) {
+      const long d = dof_[c][f];
+      if (d < 0) continue;
+      const double m = rho_face[c][f] / dt;
+      val[diagonal_[d]] += m;
+      rhs[d] += m * u[c][f];
+      x[d] = u[c][f];
+    }
+  SolveStats st;
+  if (rhs.squaredNorm() == 0.0) {
+    x.setZero();
+  } else {
+    Eigen::ConjugateGradient<Matrix, Eigen::Lower | Eigen::Upper, Eigen::DiagonalPreconditioner<double>> cg;
+    cg.setTolerance(tol);
+    cg.setMaxIterations(max_iterations);
+    cg.compute(M_);
+    x = cg.solveWithGuess(rhs, x);
+    st.iterations = static_cast<int>(cg.iterations());
+    st.relative_residual = cg.error();
+    if (cg.info() != Eigen::Success && !(st.relative_residual <= tol))
+      throw RuntimeFailure(fmt::format("flow: the viscous solve did not converge ({} iterations, residual {:.3g})",
+                                       st.iterations, st.relative_residual));
+  }
+  for (int c = 0; c < 3; ++c)
+    for (long f = 0; f < static_cast<long>(u[c].size()); ++f) {
+      const long d = dof_[c][f];
+      if (d >= 0) u[c][f] = x[d];
+    }
+  return st;
+}
+
+SolveStats viscous_step(const Grid& g, double dt, const Faces& rho_face, const std::vector<double>& mu_cell,
+                        Faces& u, double tol, int max_iterations) {
+  ViscousOperator op(g);
+  return op.solve(dt, rho_face, mu_cell, u, tol, max_iterations);
+}
+
+}  // namespace pastemix::flow
