@@ -98,7 +98,7 @@ TEST_CASE("staged output: a rename that fails half-way through commit leaves the
   fs::remove_all(dir);
 }
 
-TEST_CASE("staged output: partials and old copies of a dead process are removed; a live one's are kept") {
+TEST_CASE("staged output: partials and old copies of a dead process are removed, a live one's are kept") {
   const auto dir = fresh_dir("stale");
   // PIDs above the kernel's pid_max (4194304 at most) are never alive.
   std::ofstream(dir / "r.h5.partial-999999999") << "killed run";

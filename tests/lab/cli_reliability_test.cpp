@@ -60,7 +60,7 @@ TEST_CASE("full disk: lab reduce exits 2 naming the file, the old outputs stay, 
   CHECK(count_entries(out) == 2);  // no .partial, no .old
 }
 
-TEST_CASE("a plotting helper's multi-line output goes into its log; parameters.toml stays valid TOML") {
+TEST_CASE("a plotting helper's multi-line output goes into its log, parameters.toml stays valid TOML") {
   Dataset d("helper_output");
   const fs::path out = d.dir / "out";
   // A helper that fails with a traceback whose lines look like TOML ([table], key = "unterminated).

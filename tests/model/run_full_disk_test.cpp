@@ -26,7 +26,7 @@ std::string slurp(const fs::path& p) {
 
 }  // namespace
 
-TEST_CASE("run: a write refused by the disk is exit 2 with the path; old results stay; no partial is left") {
+TEST_CASE("run: a write refused by the disk is exit 2 with the path, old results stay, no partial is left") {
   const fs::path dir = fs::absolute(fmt::format("model_full_disk_{}", ::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);

@@ -124,7 +124,7 @@ TEST_CASE("scene checks: end_time shorter than one step is an input error") {
   CHECK(error_of(s + kSphere).find("bad.toml:2: key 'end_time': end_time 5e-07 s is shorter than one time step") == 0);
 }
 
-TEST_CASE("scene checks: a time step at 97.5 % of the Rayleigh time warns; 1e-6 s does not") {
+TEST_CASE("scene checks: a time step at 97.5 % of the Rayleigh time warns, 1e-6 s does not") {
   // T_R = pi r sqrt(rho/G) / (0.8766 + 0.163 nu), r = 0.01 m, rho = 2760, G = 4.68e7 / 2.38, nu = 0.19:
   // 4.1015e-4 s.
   const double t_r = 3.14159265358979323846 * 0.01 * std::sqrt(2760.0 / (4.68e7 / 2.38)) / (0.8766 + 0.163 * 0.19);

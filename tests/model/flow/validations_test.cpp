@@ -19,7 +19,7 @@ TEST_CASE("validation still: ratio 1800, interface at 10.37 cells, 1 s: max|u| <
   CHECK(r.max_divergence <= 1e-10);
 }
 
-TEST_CASE("validation cavity: Re 100 on 16 x 16 is within 3 % of the lid speed of Ghia (measured 2.2 %; 64 x 64: the command)") {
+TEST_CASE("validation cavity: Re 100 on 16 x 16 is within 3 % of the lid speed of Ghia (measured 2.2 %, 64 x 64: the command)") {
   omp_set_num_threads(1);
   const GhiaReference ref = read_ghia(pastemix::test::source_path("datasets/reference/ghia_ghia_shin_1982_cavity.csv"), 100);
   const CavityResult r = cavity(16, 100, ref, 30.0);
