@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include <fmt/format.h>
 
@@ -41,6 +42,27 @@ Sourced fluid_property(const H5Reader& h5, const std::string& file, const char* 
 
 }  // namespace
 
+std::string seedless_scene_key(const std::string& text) {
+  // FNV-1a 64 over the lines of the scene, skipping a `seed = ...` line before the first [table] header.
+  std::uint64_t h = 14695981039346656037ull;
+  bool top = true;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    std::size_t end = text.find('\n', start);
+    if (end == std::string::npos) end = text.size();
+    const std::string line = text.substr(start, end - start);
+    const std::size_t first = line.find_first_not_of(" \t");
+    const std::string body = first == std::string::npos ? "" : line.substr(first);
+    if (!body.empty() && body[0] == '[') top = false;
+    const bool seed_line = top && body.rfind("seed", 0) == 0 && body.find_first_not_of(" \t", 4) != std::string::npos &&
+                           body[body.find_first_not_of(" \t", 4)] == '=';
+    if (!seed_line)
+      for (char c : line + "\n") h = (h ^ static_cast<unsigned char>(c)) * 1099511628211ull;
+    start = end + 1;
+  }
+  return fmt::format("{:016x}", h);
+}
+
 int snapshot_index(const H5Reader& h5, const std::string& file, std::optional<int> chosen) {
   if (!h5.exists("/snapshots")) throw InputError(file, 0, "group '/snapshots'", "missing from the file");
   std::vector<int> snaps;
@@ -64,6 +86,8 @@ ResultSnapshot read_result(const fs::path& path, const ResultOverrides& over) {
   r.path = file;
   r.seed = h5.has_attribute("/", "seed") ? h5.attribute_int("/", "seed") : -1;
   r.scene_hash = h5.has_attribute("/", "scene_hash") ? h5.attribute_string("/", "scene_hash") : "";
+  r.ensemble_key = h5.has_attribute("/", "scene_text") ? seedless_scene_key(h5.attribute_string("/", "scene_text"))
+                                                       : r.scene_hash;
 
   r.snapshot = snapshot_index(h5, file, over.snapshot);
   const std::string g = fmt::format("/snapshots/{:06d}", r.snapshot);

@@ -45,6 +45,9 @@ struct ResultSnapshot {
   std::string path;                 // the result file
   std::int64_t seed = 0;            // -1 if the file has none
   std::string scene_hash;           // "" if the file has none
+  // The scene without its top-level `seed` line (FNV-1a 64, hex; the scene_hash when the file has no scene_text):
+  // seeded realizations of one scene (`--realizations`, `--set seed=S`) share it, other scenes do not.
+  std::string ensemble_key;
   int snapshot = 0;                 // index of the snapshot read
   double time_s = 0.0;              // its time
   std::vector<std::array<double, 3>> position;  // m
@@ -61,6 +64,9 @@ struct ResultSnapshot {
 // Reads and checks everything (finite positions, positive radii, densities and paste properties, solids in
 // (0, 1], material indices in range). Any defect -> InputError naming the file and the dataset or attribute.
 ResultSnapshot read_result(const std::filesystem::path& path, const ResultOverrides& overrides);
+
+// The ensemble key of a scene text: FNV-1a 64 (hex) of its lines without a top-level `seed = ...` line.
+std::string seedless_scene_key(const std::string& text);
 
 // Index of the snapshot to read: `chosen` if the file has it, else the last NNNNNN group under /snapshots.
 // InputError (naming `file`) when /snapshots is missing or empty, or `chosen` is not in it.

@@ -34,14 +34,15 @@ void check_distinct(const std::vector<ResultSnapshot>& results) {
         throw InputError(x.path, 0, "", fmt::format("given twice (as result {} and {}): one realization would count "
                                                     "as two",
                                                     b + 1, a + 1));
-      if (!x.scene_hash.empty() && x.scene_hash == y.scene_hash && x.seed >= 0 && x.seed == y.seed)
+      if (!x.ensemble_key.empty() && x.ensemble_key == y.ensemble_key && x.seed >= 0 && x.seed == y.seed)
         throw InputError(x.path, 0, "attribute 'seed' of '/'",
                          fmt::format("seed {} of scene {} is also the seed of {}: the same realization twice (a "
                                      "copied file?); give distinct seeds",
                                      x.seed, x.scene_hash, y.path));
     }
+  // Seeded realizations differ in their top-level seed (so in scene_hash): compare the scenes without it.
   for (const auto& r : results)
-    if (r.scene_hash != results.front().scene_hash)
+    if (r.ensemble_key != results.front().ensemble_key)
       throw InputError(r.path, 0, "attribute 'scene_hash' of '/'",
                        fmt::format("scene {} differs from {}'s scene {}: an ensemble must be realizations of one "
                                    "scene (score them separately)",

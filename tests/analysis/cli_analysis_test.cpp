@@ -144,7 +144,23 @@ TEST_CASE("cli: score refuses a file given twice, a copied realization and an en
   auto other = rock_result(0.0105);
   other.seed = 9;
   other.scene_hash = "1111111111111111";
+  other.scene_text = "# another scene\n";
   write_result(f.dir / "other.h5", other);
+  // Seeded realizations of one scene differ only in the top-level seed line (and so in scene_hash): one ensemble.
+  auto seeded = rock_result(0.0105);
+  seeded.seed = 11;
+  seeded.scene_hash = "2222222222222222";
+  seeded.scene_text = "seed = 11\n# synthetic scene for the analysis tests\n";
+  write_result(f.dir / "seeded.h5", seeded);
+  {
+    auto base = rock_result(0.010);
+    base.scene_text = "seed = 7\n# synthetic scene for the analysis tests\n";
+    write_result(f.dir / "seeded7.h5", base);
+  }
+  const auto ok = run_pastemix("score " + f.p("seeded7.h5") + " " + f.p("seeded.h5") + lab + " --out " + f.p("ens"));
+  INFO(ok.output);
+  CHECK(ok.exit_code == 0);
+  CHECK(ok.output.find("2 realizations (seeds 7, 11)") != std::string::npos);
   f.expect_bad("score " + f.p("r1.h5") + " " + f.p("other.h5") + lab,
                {"other.h5", "scene_hash", "scene 1111111111111111 differs", "realizations of one scene"});
 }

@@ -30,6 +30,7 @@ struct ResultSpec {
   bool material_density = true, surface = true, paste = true;
   double surface_z = 0.10, paste_density = 1843.0, solids = 0.75;
   std::string scene_hash = "00000000deadbeef";
+  std::string scene_text = "# synthetic scene for the analysis tests\n";
   // Spheres removed at the domain boundary (model/output.h /escaped): removal time (s) and mass (kg).
   std::vector<std::array<double, 2>> escaped;
   // Final-snapshot velocities (m/s) per sphere; empty: all at rest. `velocities = false` writes none.
@@ -39,7 +40,7 @@ struct ResultSpec {
 
 inline void write_result(const std::filesystem::path& path, const ResultSpec& s) {
   H5Writer h5(path);
-  const std::string scene = "# synthetic scene for the analysis tests\n";
+  const std::string scene = s.scene_text;
   h5.attribute("/", "scene_path", "synthetic.toml");
   h5.attribute("/", "scene_text", scene);
   h5.attribute("/", "scene_hash", s.scene_hash);

@@ -25,6 +25,7 @@ ResultSnapshot result(double solids, double diameter, const char* solids_source 
   r.path = "case3.h5";
   r.seed = 1;
   r.scene_hash = "abc";
+  r.ensemble_key = "abc";  // the scene without its seed line (read_result)
   r.solids_fraction = {solids, solids_source};
   r.radius = {0.5 * diameter, 0.5 * diameter, 0.5 * diameter};
   return r;
@@ -59,6 +60,7 @@ TEST_CASE("realizations: same path, same seed of one scene, or different scenes 
   b.seed = 2;
   CHECK_NOTHROW(check_realizations(c, {a, b}));
   b.scene_hash = "def";
+  b.ensemble_key = "def";
   CHECK_THROWS_WITH_AS(check_realizations(c, {a, b}), doctest::Contains("an ensemble must be realizations of one"),
                        pastemix::InputError);
 }
