@@ -4,18 +4,12 @@
 #include <fmt/format.h>
 
 #include "base/h5.h"
+#include "base/hash.h"
 #include "model/scene.h"
 
 namespace pastemix::model {
 
-std::string scene_hash(const std::string& text) {
-  std::uint64_t h = 1469598103934665603ULL;
-  for (unsigned char c : text) {
-    h ^= c;
-    h *= 1099511628211ULL;
-  }
-  return fmt::format("{:016x}", h);
-}
+std::string scene_hash(const std::string& text) { return text_hash(text); }
 
 namespace {
 

@@ -590,7 +590,7 @@ Scene parse_scene(std::string_view text, const std::string& display_path) {
     s.energy_interval = out->number_or("energy_interval", 0.0, Range::positive);
   }
   if (s.energy_interval == 0.0) s.energy_interval = s.output_interval;
-  s.stop = parse_stop_rule(root, s.end_time);
+  s.stop = parse_stop_rule(root);
 
   // Blow-up limit: the particles cannot gain more kinetic energy than the initial one plus the largest
   // fall inside the domain; twice that is certainly a numerical blow-up.

@@ -11,7 +11,7 @@
 
 namespace pastemix::model {
 
-StopRule parse_stop_rule(const Params& root, double end_time) {
+StopRule parse_stop_rule(const Params& root) {
   StopRule r;
   const auto t = root.optional_table("stop");
   if (!t) return r;
@@ -26,7 +26,6 @@ StopRule parse_stop_rule(const Params& root, double end_time) {
   r.hold = static_cast<int>(hold);
   // start >= end_time is allowed (a shortened look with --set end_time=...): the run then ends at end_time
   // with the not-at-rest warning.
-  (void)end_time;
   if (!r.at_rest)
     for (const char* k : {"speed", "paste_speed", "moving_mass", "check_interval", "start", "hold"})
       if (t->has(k)) t->fail(k, "only with rule = \"at_rest\"");

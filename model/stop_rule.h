@@ -39,7 +39,7 @@ struct StopRule {
 };
 
 // Reads the optional [stop] table of a scene (InputError with file:line for a bad value).
-StopRule parse_stop_rule(const Params& root, double end_time);
+StopRule parse_stop_rule(const Params& root);
 
 struct MotionCensus {
   double total_mass = 0.0;      // kg, particles in the world

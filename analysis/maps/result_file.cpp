@@ -3,12 +3,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 
 #include <fmt/format.h>
 
 #include "base/error.h"
 #include "base/h5.h"
+#include "base/hash.h"
 
 namespace pastemix::analysis {
 
@@ -43,24 +43,22 @@ Sourced fluid_property(const H5Reader& h5, const std::string& file, const char* 
 }  // namespace
 
 std::string seedless_scene_key(const std::string& text) {
-  // FNV-1a 64 over the lines of the scene, skipping a `seed = ...` line before the first [table] header.
-  std::uint64_t h = 14695981039346656037ull;
+  // The scene's lines without a `seed = ...` line before the first [table] header, hashed like scene_hash.
+  std::string kept;
   bool top = true;
   std::size_t start = 0;
-  while (start <= text.size()) {
-    std::size_t end = text.find('\n', start);
-    if (end == std::string::npos) end = text.size();
-    const std::string line = text.substr(start, end - start);
+  while (start < text.size()) {
+    const std::size_t end = std::min(text.find('\n', start), text.size());
+    const std::string_view line(text.data() + start, end - start);
     const std::size_t first = line.find_first_not_of(" \t");
-    const std::string body = first == std::string::npos ? "" : line.substr(first);
-    if (!body.empty() && body[0] == '[') top = false;
-    const bool seed_line = top && body.rfind("seed", 0) == 0 && body.find_first_not_of(" \t", 4) != std::string::npos &&
-                           body[body.find_first_not_of(" \t", 4)] == '=';
-    if (!seed_line)
-      for (char c : line + "\n") h = (h ^ static_cast<unsigned char>(c)) * 1099511628211ull;
+    const std::string_view body = first == std::string_view::npos ? std::string_view{} : line.substr(first);
+    if (body.starts_with('[')) top = false;
+    const std::size_t eq = body.find_first_not_of(" \t", 4);
+    const bool seed_line = top && body.starts_with("seed") && eq != std::string_view::npos && body[eq] == '=';
+    if (!seed_line) kept.append(line).push_back('\n');
     start = end + 1;
   }
-  return fmt::format("{:016x}", h);
+  return text_hash(kept);
 }
 
 int snapshot_index(const H5Reader& h5, const std::string& file, std::optional<int> chosen) {

@@ -45,7 +45,7 @@ struct ResultSnapshot {
   std::string path;                 // the result file
   std::int64_t seed = 0;            // -1 if the file has none
   std::string scene_hash;           // "" if the file has none
-  // The scene without its top-level `seed` line (FNV-1a 64, hex; the scene_hash when the file has no scene_text):
+  // The scene without its top-level `seed` line (text_hash, hex; the scene_hash when the file has no scene_text):
   // seeded realizations of one scene (`--realizations`, `--set seed=S`) share it, other scenes do not.
   std::string ensemble_key;
   int snapshot = 0;                 // index of the snapshot read
@@ -65,7 +65,7 @@ struct ResultSnapshot {
 // (0, 1], material indices in range). Any defect -> InputError naming the file and the dataset or attribute.
 ResultSnapshot read_result(const std::filesystem::path& path, const ResultOverrides& overrides);
 
-// The ensemble key of a scene text: FNV-1a 64 (hex) of its lines without a top-level `seed = ...` line.
+// The ensemble key of a scene text: base/hash.h text_hash of its lines without a top-level `seed = ...` line.
 std::string seedless_scene_key(const std::string& text);
 
 // Index of the snapshot to read: `chosen` if the file has it, else the last NNNNNN group under /snapshots.
