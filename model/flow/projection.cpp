@@ -142,8 +142,18 @@ ProjectionStats PressureOperator::project(double dt, const Faces& rho_face, Face
     cg.compute(A_);
     x = cg.solveWithGuess(rhs, x);
     st.solve.iterations = static_cast<int>(cg.iterations());
-    st.solve.relative_residual = cg.error();
-    if (cg.info() != Eigen::Success && !(st.solve.relative_residual <= 0.5 * tol))
+    // CG's recursive residual drifts from the true one by round-off times the condition number (a density
+    // ratio of 830 on a 400 x 100 grid: the true relative divergence was up to 4e-10 when CG reported 5e-11).
+    // A restart from the current solution starts the recursion again from the true residual.
+    const double rhs_norm = rhs.norm();
+    double true_residual = (rhs - A_ * x).norm() / rhs_norm;
+    for (int restart = 0; restart < 5 && true_residual > 0.5 * tol && cg.info() == Eigen::Success; ++restart) {
+      x = cg.solveWithGuess(rhs, x);
+      st.solve.iterations += static_cast<int>(cg.iterations());
+      true_residual = (rhs - A_ * x).norm() / rhs_norm;
+    }
+    st.solve.relative_residual = true_residual;
+    if (!(true_residual <= tol))  // the stated bound; the restarts aim at half of it
       throw RuntimeFailure(fmt::format("flow: the pressure solve did not converge ({} iterations, residual {:.3g})",
                                        st.solve.iterations, st.solve.relative_residual));
   }
