@@ -12,7 +12,10 @@
 // dilatation term, together with the control volume's own density (Rudman 1998; Arrufat et al. 2021). A
 // heavy fluid crossing into a light one then carries its momentum with its mass, instead of a light cell
 // receiving a heavy cell's velocity jump. The face value of u is an upwind-biased, Koren-limited (TVD)
-// interpolation: second order where the flow is smooth, no new extrema at the interface.
+// interpolation: second order where the flow is smooth, no new extrema at the interface. In a control volume
+// holding both phases the averaged mass fluxes need not match its content, so there the new velocity is
+// bounded by the old ones it depends on (the face and its neighbours along the sweep) and the momentum set
+// to match; single-phase volumes are transported untouched.
 #pragma once
 
 #include <array>
