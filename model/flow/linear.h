@@ -1,11 +1,12 @@
 // SPDX-License-Identifier: MIT
 // The two linear solves of a flow step (the implicit viscous step and the pressure projection), both
-// symmetric positive definite and solved by Eigen's conjugate gradients with a Jacobi preconditioner.
+// symmetric positive definite and solved by Eigen's conjugate gradients: the viscous step with a Jacobi
+// preconditioner (its matrix is rho/dt-dominated at a step limited by advection: 1-20 iterations), the pressure
+// with MIC(0) (model/flow/preconditioner.h: Jacobi needed O(n) iterations on an n-cell-wide grid).
 //
-// Why Jacobi and not incomplete Cholesky: both matrices change every step (the interface moves), so a
-// factorisation would be rebuilt each step, and its triangular solves are serial; Jacobi is set up for free,
-// and Eigen runs the row-major sparse product of each iteration on all threads. Every row is summed by one
-// thread in a fixed order and the dot products are serial, so the result does not depend on the thread count.
+// Eigen runs the row-major sparse product of each iteration on all threads; every row is summed by one thread
+// in a fixed order, the dot products and MIC(0)'s triangular solves are serial, so the result does not depend
+// on the thread count.
 #pragma once
 
 #include <array>

@@ -12,6 +12,7 @@
 
 #include "base/error.h"
 #include "model/flow/linear.h"
+#include "model/flow/preconditioner.h"
 
 namespace pastemix::flow {
 
@@ -100,9 +101,9 @@ PressureOperator::PressureOperator(const Grid& g) : g_(g) {
   pin_ = position(0, 0);
 }
 
-// Jacobi-preconditioned CG. Incomplete Cholesky (Eigen's IncompleteCholesky, natural ordering) was measured
-// on the 32 x 32 cavity: 78 iterations per solve instead of 238, but the same CPU time per step, because the
-// factorisation has to be redone every step (the interface moves the coefficients) and its solves are serial.
+// CG preconditioned by MIC(0) (model/flow/preconditioner.h). Jacobi needed O(n) iterations (459 per solve on
+// the 64 x 64 cavity); Eigen's IncompleteCholesky (threshold fill) cut them 3x but cost as much to refactor
+// every step as it saved. MIC(0) is refactored every step too, in one pass, and only when CG iterates.
 ProjectionStats PressureOperator::project(double dt, const Faces& rho_face, Faces& u, std::vector<double>& p, double tol,
                                           int max_iterations) {
   const Grid& g = g_;
@@ -133,7 +134,7 @@ ProjectionStats PressureOperator::project(double dt, const Faces& rho_face, Face
     val[pin_] *= 2.0;
   }
   if (rhs.squaredNorm() > 0.0) {
-    Eigen::ConjugateGradient<Matrix, Eigen::Lower | Eigen::Upper, Eigen::DiagonalPreconditioner<double>> cg;
+    Eigen::ConjugateGradient<Matrix, Eigen::Lower | Eigen::Upper, MicPreconditioner> cg;
     // Half the stated tolerance: CG's recursive residual and the divergence recomputed after the face update
     // differ by round-off, and the stated bound is on the latter.
     cg.setTolerance(0.5 * tol);
