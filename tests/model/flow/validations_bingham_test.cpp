@@ -9,3 +9,43 @@
 #include <cmath>
 
 using namespace pastemix::flow;
+
+TEST_CASE("validation poiseuille: Bingham plug flow, L2 error <= 1 % at 32 cells, second order from 16 (measured 0.32 %, 2.00)") {
+  omp_set_num_threads(1);
+  const PoiseuilleResult a = bingham_poiseuille(16, 1000.0), b = bingham_poiseuille(32, 1000.0);
+  CHECK(b.l2_error <= 0.01);
+  CHECK(std::log2(a.l2_error / b.l2_error) >= 1.8);
+  // The yield surfaces within a tenth of a cell of tau_y / G either side of the centre.
+  CHECK(std::abs(b.plug_width - b.plug_width_exact) < 0.1 * b.H / 32);
+  CHECK(b.plug_speed == doctest::Approx(b.plug_speed_exact).epsilon(1e-3));
+  CHECK(b.last_change < 1e-9);
+  CHECK(b.volume_drift <= 1e-8);
+}
+
+TEST_CASE("validation incline: at 0.8 h_c the surface creeps below 1e-5 m/s and halves with m doubled") {
+  omp_set_num_threads(1);
+  const InclineResult a = bingham_incline(0.8, 12, 1000.0), b = bingham_incline(0.8, 12, 2000.0);
+  CHECK(a.surface_speed < 1e-5);
+  CHECK(b.surface_speed < 1e-5);
+  // Papanastasiou's creep rate at a stress below tau_y is -ln(1 - tau/tau_y) / m: the ratio is 2 - O(eta_B / (tau_y m)).
+  CHECK(a.surface_speed / b.surface_speed >= 1.999);
+  CHECK(a.volume_drift <= 1e-8);
+}
+
+TEST_CASE("validation incline: at 1.5 h_c the surface speed is the analytic Bingham film's within 2 % (12 cells: 0.06 %)") {
+  omp_set_num_threads(1);
+  const InclineResult r = bingham_incline(1.5, 12, 1000.0);
+  CHECK(std::abs(r.surface_speed / r.surface_speed_exact - 1.0) < 0.02);
+  CHECK(r.last_change < 1e-4);
+  CHECK(r.volume_drift <= 1e-8);
+}
+
+TEST_CASE("validation cliff: a cut of 2 tau_y/(rho g) stands (< 0.1 cell in 2 s), one of 6 tau_y/(rho g) collapses") {
+  omp_set_num_threads(1);
+  const CliffResult stand = bingham_cliff(2.0, 8, 1000.0);
+  CHECK(stand.displacement < 0.1 * stand.h);
+  CHECK(stand.volume_drift <= 1e-8);
+  const CliffResult fall = bingham_cliff(6.0, 8, 1000.0);
+  CHECK(fall.front_advance > 0.5 * fall.H);  // measured 36 mm of a 46 mm cut
+  CHECK(fall.volume_drift <= 1e-8);
+}
