@@ -3,15 +3,20 @@
 //   pastemix validate flow poiseuille [--cells 32] [--m 1000]   Bingham plane Poiseuille, 1/2, 1, 2 x cells
 //   pastemix validate flow incline [--cells 24] [--m 1000]      Bingham film at 0.8 h_c (m, 2 m) and 1.5 h_c
 //   pastemix validate flow cliff [--cells 8] [--m 1000]         vertical cuts of 2 and 6 tau_y/(rho g), m and 2 m
+//   pastemix validate flow slump [--cells 10 5] [--m 1000] [--store out/lab/parameters.toml]   the lab's slump test
 // Each prints its error against the analytic answer, its cost and the paste-volume drift.
 #include <cmath>
 #include <memory>
+#include <string>
+#include <tuple>
+#include <vector>
 
 #include <Eigen/Core>
 #include <fmt/format.h>
 #include <omp.h>
 
 #include "app/commands.h"
+#include "model/flow/bingham.h"
 #include "model/flow/validations_bingham.h"
 
 namespace pastemix::app {
@@ -90,6 +95,25 @@ void run_cliff(int cells, double m) {
     }
 }
 
+void run_slump_at(double cell, double m, double tau_y, double rho, double eta_B) {
+  const SlumpResult r = bingham_slump(cell, m, tau_y, rho, eta_B);
+  fmt::print("  {:g} mm cells, m = {:g} s: {} at t = {:.3f} s (paste speed {:.2e} m/s, rest below {:g})\n", 1e3 * cell, m,
+             r.at_rest ? "at rest" : "NOT at rest", r.time, r.final_speed, kRestSpeed);
+  fmt::print("    slump {:.1f} mm, Pashias-Boger {:.1f} mm: {:+.1f} % (bound 10 % at 5 mm); spread {:.1f} mm, Roussel & "
+             "Coussot {:.1f} mm: {:+.1f} % (bound 10 %)\n",
+             1e3 * r.slump, 1e3 * r.slump_pashias, 100 * (r.slump / r.slump_pashias - 1), 1e3 * r.spread,
+             1e3 * r.spread_roussel, 100 * (r.spread / r.spread_roussel - 1));
+  print_cost(r.cost, r.volume_drift, r.max_divergence);
+}
+
+void run_slump(const std::string& store, const std::vector<double>& cells_mm, double m) {
+  const StorePaste p = read_store_paste(store, 0.75);
+  fmt::print("slump: the 152 mm cylinder (H = D), quarter domain, the 75 % paste from {} ({}: tau_y {:.2f} Pa, eta_B "
+             "{:.3g} Pa s, rho {:.1f} kg/m3), Papanastasiou m = {:g} s\n",
+             store, p.key, p.yield_stress, p.plastic_viscosity, p.density, m);
+  for (double c : cells_mm) run_slump_at(1e-3 * c, m, p.yield_stress, p.density, p.plastic_viscosity);
+}
+
 }  // namespace
 
 void register_flow_bingham_commands(CLI::App& flow) {
@@ -114,6 +138,18 @@ void register_flow_bingham_commands(CLI::App& flow) {
   add("poiseuille", "Bingham plane Poiseuille flow vs the analytic plug profile (cells/2, cells, 2 cells)", 32,
       run_poiseuille);
   add("incline", "Bingham layer on an incline: at rest below h_c, the analytic film above", 24, run_incline);
+  auto so = std::make_shared<std::tuple<std::string, std::vector<double>, double, int>>(
+      "out/lab/parameters.toml", std::vector<double>{10.0, 5.0}, 1000.0, 1);
+  CLI::App* sl = flow.add_subcommand("slump", "the lab's slump test vs Pashias-Boger (slump) and Roussel & Coussot (spread)");
+  sl->add_option("--store", std::get<0>(*so), "the lab parameter store (default out/lab/parameters.toml)");
+  sl->add_option("--cells", std::get<1>(*so), "cell sizes in mm (default 10 5)");
+  sl->add_option("--m", std::get<2>(*so), "Papanastasiou regularisation m, s (default 1000)");
+  sl->add_option("--threads", std::get<3>(*so), "OpenMP threads (default 1)");
+  sl->callback([so] {
+    omp_set_num_threads(std::get<3>(*so));
+    Eigen::setNbThreads(std::get<3>(*so));
+    run_slump(std::get<0>(*so), std::get<1>(*so), std::get<2>(*so));
+  });
   add("cliff", "plane-strain vertical cut: 2 tau_y/(rho g) stands, 6 tau_y/(rho g) collapses", 8, run_cliff);
 }
 

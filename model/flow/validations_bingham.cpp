@@ -222,3 +222,85 @@ CliffResult bingham_cliff(double height_over_scale, int cells, double m, double 
 }
 
 }  // namespace pastemix::flow
+
+namespace pastemix::flow {
+
+double pashias_boger_slump(double tau_y, double rho, double H) {
+  const double t = tau_y / (rho * kG * H);  // tau'
+  return H * (1.0 - 2.0 * t * (1.0 - std::log(2.0 * t)));
+}
+
+double roussel_coussot_radius(double tau_y, double rho, double volume) {
+  return std::pow(225.0 * rho * kG * volume * volume / (128.0 * kPi * kPi * tau_y), 0.2);
+}
+
+namespace {
+
+constexpr double kMouldH = 0.152, kMouldR = 0.076;  // m: the lab's mould (H = D = 152 mm)
+
+// The quarter cylinder's share of each cell: 16 x 16 points across x-y, the z overlap exact.
+std::vector<double> quarter_cylinder(const Grid& g) {
+  std::vector<double> a(g.cell_count(), 0.0);
+  const int sub = 16;
+  for (int j = 0; j < g.n[1]; ++j)
+    for (int i = 0; i < g.n[0]; ++i) {
+      int inside = 0;
+      for (int sj = 0; sj < sub; ++sj)
+        for (int si = 0; si < sub; ++si) {
+          const double x = (i + (si + 0.5) / sub) * g.h[0], y = (j + (sj + 0.5) / sub) * g.h[1];
+          inside += x * x + y * y <= kMouldR * kMouldR;
+        }
+      const double share = static_cast<double>(inside) / (sub * sub);
+      for (int k = 0; k < g.n[2]; ++k) {
+        const double zf = std::clamp((kMouldH - k * g.h[2]) / g.h[2], 0.0, 1.0);
+        a[g.cell(i, j, k)] = share * zf;
+      }
+    }
+  return a;
+}
+
+}  // namespace
+
+SlumpResult bingham_slump(double cell, double m, double tau_y, double rho, double eta_B, double max_time) {
+  SlumpResult r;
+  r.cell = cell;
+  r.m = m;
+  r.tau_y = tau_y;
+  r.rho = rho;
+  Grid g;
+  const int nxy = static_cast<int>(std::ceil(0.26 / cell)), nz = static_cast<int>(std::ceil(0.16 / cell));
+  g.n = {nxy, nxy, nz};
+  g.h = {cell, cell, cell};
+  for (int s = 0; s < 4; ++s) g.bc[s].type = BoundaryType::free_slip;  // x = 0, y = 0: symmetry; far sides
+  g.bc[5].type = BoundaryType::open;
+  Phases ph;
+  ph.rho_paste = rho;
+  ph.paste = std::make_shared<Bingham>(tau_y, eta_B, m);
+  FlowSolver s(g, ph, FlowSettings{});
+  s.set_alpha(quarter_cylinder(g));
+  const double v0 = s.paste_volume();
+  r.slump_pashias = pashias_boger_slump(tau_y, rho, kMouldH);
+  r.spread_roussel = 2.0 * roussel_coussot_radius(tau_y, rho, 4.0 * v0);  // the whole sample's volume
+  // At rest once no paste cell moves faster than kRestSpeed, after the first 0.1 s (it starts at rest).
+  while (s.time() < max_time) {
+    s.step(s.next_time_step());
+    r.max_divergence = std::max(r.max_divergence, relative_divergence(s.last()));
+    if (s.time() > 0.1 && at_rest(s)) {
+      r.at_rest = true;
+      break;
+    }
+  }
+  r.time = s.time();
+  r.final_speed = paste_speed(s);
+  double column = 0.0, floor = 0.0;
+  for (int k = 0; k < g.n[2]; ++k) column += s.alpha()[g.cell(0, 0, k)] * cell;
+  for (int j = 0; j < g.n[1]; ++j)
+    for (int i = 0; i < g.n[0]; ++i) floor += s.alpha()[g.cell(i, j, 0)] * cell * cell;
+  r.slump = kMouldH - column;
+  r.spread = 2.0 * std::sqrt(4.0 * floor / kPi);
+  r.volume_drift = drift(s.paste_volume(), v0);
+  r.cost = cost_of(s);
+  return r;
+}
+
+}  // namespace pastemix::flow

@@ -76,3 +76,32 @@ CliffResult bingham_cliff(double height_over_scale, int cells, double m, double 
                           const BinghamPaste& p = {});
 
 }  // namespace pastemix::flow
+
+namespace pastemix::flow {
+
+// --- slump: the lab's slump test (152 mm cylinder, H = D, datasets/thesis/slump_tests.csv) on a quarter
+// domain (symmetry planes x = 0 and y = 0, no-slip plate, open top), the mould lifted at once, run to rest
+// (model/flow/bingham.h kRestSpeed). References, both quasi-static:
+//   Pashias, Boger, Summers & Glenister (1996, J. Rheol. 40:1179), the cylinder: S/H = 1 - 2 tau'(1 - ln 2 tau'),
+//     tau' = tau_y / (rho g H) (101.7 mm at 138 Pa, 1843 kg/m3);
+//   Roussel & Coussot (2005, J. Rheol. 49:705), the spread (thin-layer) regime: on a no-slip plane the
+//     stopped shape obeys rho g h |dh/dr| = tau_y, h = sqrt(2 tau_y (R - r) / (rho g)), whose volume gives
+//     R = (225 rho g Omega^2 / (128 pi^2 tau_y))^(1/5) (Omega the sample's volume).
+// The slump is measured at the axis (the paste's height in the column of cells at the corner), the spread as
+// the diameter of the circle with the area the paste covers on the plate (the bottom row's alpha). ---
+struct SlumpResult {
+  double cell = 0.0, m = 0.0;            // m, s
+  double tau_y = 0.0, rho = 0.0;         // Pa, kg/m3 (the store's)
+  double time = 0.0;                     // s, when at rest (or the limit)
+  bool at_rest = false;
+  double final_speed = 0.0;              // m/s, paste_speed at the end
+  double slump = 0.0, slump_pashias = 0.0;      // m
+  double spread = 0.0, spread_roussel = 0.0;    // m, diameters
+  double volume_drift = 0.0, max_divergence = 0.0;
+  Cost cost;
+};
+SlumpResult bingham_slump(double cell, double m, double tau_y, double rho, double eta_B, double max_time = 4.0);
+double pashias_boger_slump(double tau_y, double rho, double H);  // m
+double roussel_coussot_radius(double tau_y, double rho, double volume);  // m
+
+}  // namespace pastemix::flow
