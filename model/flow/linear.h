@@ -54,9 +54,11 @@ struct EdgeLaw {
 class ViscousOperator {
  public:
   explicit ViscousOperator(const Grid& g);
-  // mu_cell: the cells' viscosities (normal stresses; shear edges too unless `edge` is given).
+  // mu_cell: the cells' viscosities (normal stresses; shear edges too unless `edge` is given). The solve stops
+  // when the residual (N/m3, 2-norm over the unknowns) is below tol times the larger of ||rhs|| and
+  // force_floor (the solver passes the weight, ||rho_f g||: a paste at rest is not solved to its round-off).
   SolveStats solve(double dt, const Faces& rho_face, const std::vector<double>& mu_cell, Faces& u, double tol,
-                   int max_iterations, const EdgeLaw* edge = nullptr);
+                   int max_iterations, const EdgeLaw* edge = nullptr, double force_floor = 0.0);
 
  private:
   struct Term {

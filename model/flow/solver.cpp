@@ -167,10 +167,16 @@ StepStats FlowSolver::step(double dt) {
     pressure_ready_ = true;
   }
   const Faces kick = gravity_kick(dt);
+  double weight = 0.0;  // ||rho_f g|| over the kicked faces, N/m3: the viscous solve's force scale
   for (int c = 0; c < 3; ++c)
-    for (std::size_t f = 0; f < u_[c].size(); ++f) u_[c][f] += kick[c][f];
+    for (std::size_t f = 0; f < u_[c].size(); ++f) {
+      u_[c][f] += kick[c][f];
+      const double w = rho[c][f] * kick[c][f] / dt;
+      weight += w * w;
+    }
   pressure_.subtract_gradient(dt, rho, p_, u_);
-  st.viscous = viscous_.solve(dt, rho, mu_, u_, s_.viscous_tolerance, s_.max_iterations, lagged ? &edge : nullptr);
+  st.viscous = viscous_.solve(dt, rho, mu_, u_, s_.viscous_tolerance, s_.max_iterations, lagged ? &edge : nullptr,
+                              std::sqrt(weight));
   // Give the last gradient back and project for the whole pressure, with the last one as the guess: the same
   // result as projecting for the increment, and the same right-hand side (and CG iterations) as before.
   pressure_.subtract_gradient(-dt, rho, p_, u_);
