@@ -49,3 +49,27 @@ TEST_CASE("validation cliff: a cut of 2 tau_y/(rho g) stands (< 0.1 cell in 2 s)
   CHECK(fall.front_advance > 0.5 * fall.H);  // measured 36 mm of a 46 mm cut
   CHECK(fall.volume_drift <= 1e-8);
 }
+
+TEST_CASE("validation slump: the references (Pashias-Boger 101.7 mm at 138 Pa, Roussel-Coussot's shape holds its volume)") {
+  CHECK(pashias_boger_slump(137.97137433825228, 1843.0, 0.152) == doctest::Approx(0.1017).epsilon(5e-4));
+  // The stopped shape h = sqrt(2 tau_y (R - r) / (rho g)) on r < R, integrated numerically, holds the volume R
+  // was computed from (the 152 mm cylinder's).
+  const double tau = 138.0, rho = 1843.0, V = 3.14159265358979 * 0.076 * 0.076 * 0.152;
+  const double R = roussel_coussot_radius(tau, rho, V);
+  double vol = 0.0;
+  const int n = 200000;
+  for (int i = 0; i < n; ++i) {
+    const double r = (i + 0.5) * R / n;
+    vol += 2.0 * 3.14159265358979 * r * std::sqrt(2.0 * tau * (R - r) / (rho * 9.81)) * R / n;
+  }
+  CHECK(vol == doctest::Approx(V).epsilon(1e-6));
+  CHECK(2 * R == doctest::Approx(0.3556).epsilon(1e-3));
+}
+
+TEST_CASE("validation slump: 20 mm cells for 0.5 s keep the paste volume to 1e-8 (the slump's accuracy: the command)") {
+  omp_set_num_threads(1);
+  const SlumpResult r = bingham_slump(0.02, 1000.0, 138.0, 1843.0, 0.7, 0.5);
+  CHECK(r.volume_drift <= 1e-8);
+  CHECK(r.max_divergence <= 1e-10);
+  CHECK(r.slump > 0.02);  // it has slumped by more than a cell in 0.5 s
+}
