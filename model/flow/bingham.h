@@ -14,8 +14,8 @@
 // At rest: a regularised fluid never stops (Frigaard & Nouar 2005), so rest is a stated speed. The paste is
 // at rest when no cell that is mostly paste (alpha >= 1/2) moves faster than kRestSpeed (cell-centre
 // velocity magnitude). 1e-3 m/s: a 5 mm cell in 5 s, far below the 0.01 m/s the pours' stop rule uses for
-// rock in the paste (model/stop_rule.h paste_speed), and above the creep of a standing paste at m >= 100 s
-// (a 0.1 m body creeps at ~L / m = 1e-3 m/s at m = 100 s, 1e-4 at 1000 s).
+// rock in the paste (model/stop_rule.h paste_speed), and above the creep of a standing paste at m >= 1000 s
+// (a body of size L creeps at ~L / m: 1e-4 m/s for 0.1 m at m = 1000 s; at m = 100 s it would reach 1e-3).
 //
 // The store: the same values the engine's scenes read (`rheology_from` + `solids_fraction`,
 // model/fluid/fluid_scene.h): paste_rheology.cw_<...>.{yield_stress, plastic_viscosity, density} of the
