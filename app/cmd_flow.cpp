@@ -174,6 +174,7 @@ void register_flow_commands(CLI::App& app) {
   CLI::App* validate = group_subcommand(app, "validate", "validations");
   CLI::App* flow = validate->add_subcommand("flow", "the flow solver (model/flow) against published references");
   flow->require_subcommand(1);
+  register_flow_bingham_commands(*flow);
 
   struct Opts {
     int n = 64, re = 100, cells = 20, threads = 1;

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "base/error.h"
+#include "model/flow/bingham.h"
 
 namespace pastemix::flow {
 
@@ -78,10 +79,7 @@ void read_grid(const Params& flow, Grid& g) {
 
 void read_phases(const Params& flow, Phases& ph) {
   const Params paste = flow.table("paste");
-  ph.rho_paste = paste.number("density", Range::positive);
-  const std::string law = paste.choice_or("law", {"newtonian"}, "newtonian");
-  (void)law;  // one law today; the yield-stress laws (part 2) add their names and keys here
-  ph.paste = std::make_shared<Newtonian>(paste.number("viscosity", Range::positive));
+  ph.paste = read_paste_law(paste, ph.rho_paste);  // model/flow/bingham.h: newtonian, bingham, herschel_bulkley
   if (const auto air = flow.optional_table("air")) {
     ph.rho_air = air->number_or("density", ph.rho_air, Range::positive);
     ph.eta_air = air->number_or("viscosity", ph.eta_air, Range::positive);

@@ -20,8 +20,12 @@
 //   z_hi_velocity = [0.0, 0.0, 0.0]    # m/s, a moving wall's velocity (tangential part used), optional
 //   [flow.paste]
 //   density = 1850.0                   # kg/m3
-//   law = "newtonian"                  # the viscosity law (part 2 adds the yield-stress laws)
-//   viscosity = 1.0                    # Pa s
+//   law = "newtonian"                  # newtonian | bingham | herschel_bulkley (model/flow/bingham.h)
+//   viscosity = 1.0                    # Pa s (newtonian only)
+//   # law = "bingham": yield_stress (Pa), plastic_viscosity (Pa s), density, or instead of those three
+//   #   rheology_from = "../../out/lab/parameters.toml" and solids_fraction = 0.75 (the engine's store keys);
+//   #   regularisation = 1000.0        # s, Papanastasiou's m (required: its effect is part of every result)
+//   # law = "herschel_bulkley": yield_stress (Pa), consistency (Pa s^n), flow_index (-), regularisation (s)
 //   [flow.air]
 //   density = 1.2                      # kg/m3
 //   viscosity = 1.8e-5                 # Pa s

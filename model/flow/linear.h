@@ -10,12 +10,14 @@
 #pragma once
 
 #include <array>
+#include <utility>
 #include <vector>
 
 #include <Eigen/SparseCore>
 
 #include "model/flow/advection.h"
 #include "model/flow/grid.h"
+#include "model/flow/rheology.h"
 
 namespace pastemix::flow {
 
@@ -35,11 +37,28 @@ SolveStats viscous_step(const Grid& g, double dt, const Faces& rho_face, const s
                         Faces& u, double tol, int max_iterations);
 
 // The same, with the stencils built once for a grid (the solver keeps one; viscous_step builds one per call).
+// A shear-dependent paste law evaluated on each shear edge at the edge's own strain rate (model/flow/bingham.h
+// says why: a cell-centred strain rate smears a plug's edge over two cells). The edge's rate is
+//   gd_edge^2 = gamma_cd(edge)^2 + mean over its cells of (2 D:D - gamma_cd^2)  (1/s^2),
+// gamma_cd = du_c/dx_d + du_d/dx_c from the lagged velocity with the operator's own stencil (exact for a
+// layered shear flow), the other components from the cells. Each cell's mixture viscosity at that rate,
+// alpha eta(gd_edge) + (1 - alpha) eta_air, enters the harmonic mean as before.
+struct EdgeLaw {
+  const Rheology* paste = nullptr;
+  const std::vector<double>* alpha = nullptr;
+  double eta_air = 0.0;                          // Pa s
+  const Faces* u = nullptr;                      // the velocity the strain rates come from (start of step)
+  const std::vector<double>* cell_parts = nullptr;  // per cell: 2 D:D, gamma_xy, gamma_xz, gamma_yz
+};
+
 class ViscousOperator {
  public:
   explicit ViscousOperator(const Grid& g);
+  // mu_cell: the cells' viscosities (normal stresses; shear edges too unless `edge` is given). The solve stops
+  // when the residual (N/m3, 2-norm over the unknowns) is below tol times the larger of ||rhs|| and
+  // force_floor (the solver passes the weight, ||rho_f g||: a paste at rest is not solved to its round-off).
   SolveStats solve(double dt, const Faces& rho_face, const std::vector<double>& mu_cell, Faces& u, double tol,
-                   int max_iterations);
+                   int max_iterations, const EdgeLaw* edge = nullptr, double force_floor = 0.0);
 
  private:
   struct Term {
@@ -52,6 +71,7 @@ class ViscousOperator {
     long fixed_begin;
     int fixed_count;
     double b;  // 1/s, the wall velocities' part of the strain rate
+    int pair;  // shear terms: 0 xy, 1 xz, 2 yz; -1 normal
   };
   struct Fixed {
     int c;
@@ -65,7 +85,9 @@ class ViscousOperator {
   std::vector<long> wcells_, dofs_, positions_, diagonal_;
   std::vector<double> coefs_;
   std::vector<Fixed> fixed_;
+  std::vector<std::pair<int, long>> dof_face_;  // (component, face) of each unknown
   Matrix M_;
+  double edge_viscosity(const Term& t, const EdgeLaw& e) const;
 };
 
 // Pressure projection: solves div((dt / rho_f) grad p) = div u (p in Pa, 0 on an open side; in a closed box
@@ -85,6 +107,9 @@ class PressureOperator {
   explicit PressureOperator(const Grid& g);
   ProjectionStats project(double dt, const Faces& rho_face, Faces& u, std::vector<double>& p, double tol,
                           int max_iterations);
+  // u -= (dt / rho_f) grad p on every face the projection acts on (the same discrete gradient, p = 0 outside an
+  // open side): the pressure-gradient part of a step (a negative dt adds it back).
+  void subtract_gradient(double dt, const Faces& rho_face, const std::vector<double>& p, Faces& u) const;
 
  private:
   struct Link {

@@ -158,16 +158,21 @@ ProjectionStats PressureOperator::project(double dt, const Faces& rho_face, Face
                                        st.solve.iterations, st.solve.relative_residual));
   }
   for (long i = 0; i < n; ++i) p[i] = x[i];
+  subtract_gradient(dt, rho_face, p, u);
+  const std::vector<double> div1 = divergence(g, u);
+  st.divergence_after = norm2(div1);
+  for (double d : div1) st.max_volume_loss = std::max(st.max_volume_loss, std::abs(d) * dt);
+  return st;
+}
+
+void PressureOperator::subtract_gradient(double dt, const Faces& rho_face, const std::vector<double>& p, Faces& u) const {
+  const Grid& g = g_;
   for (const Link& l : links_) {
     const double k = dt / (rho_face[l.c][l.face] * g.h[l.c]);
     double& v = u[l.c][l.face];
     if (l.a >= 0 && l.b >= 0) v -= k * (p[l.b] - p[l.a]);
     else v -= l.a >= 0 ? k * (0.0 - p[l.a]) * 2.0 : k * (p[l.b] - 0.0) * 2.0;
   }
-  const std::vector<double> div1 = divergence(g, u);
-  st.divergence_after = norm2(div1);
-  for (double d : div1) st.max_volume_loss = std::max(st.max_volume_loss, std::abs(d) * dt);
-  return st;
 }
 
 ProjectionStats project(const Grid& g, double dt, const Faces& rho_face, Faces& u, std::vector<double>& p, double tol,

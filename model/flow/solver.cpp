@@ -34,12 +34,14 @@ void FlowSolver::add_paste_box(const std::array<double, 3>& lo, const std::array
         double& al = alpha_[g_.cell(q)];
         al = std::min(1.0, al + f);
       }
+  pressure_ready_ = false;
   update_viscosity({});
 }
 
 void FlowSolver::set_alpha(std::vector<double> alpha) {
   if (alpha.size() != alpha_.size()) throw std::invalid_argument("flow: alpha has the wrong size");
   alpha_ = std::move(alpha);
+  pressure_ready_ = false;
   update_viscosity({});
 }
 
@@ -55,12 +57,33 @@ double FlowSolver::next_time_step() const {
   return dt;
 }
 
+double FlowSolver::neighbour(const std::vector<double>& uc, int c, int d, const std::array<int, 3>& q, int side) const {
+  const int w = g_.wrap_cell(d, q[d] + side);
+  const double in = uc[3 * g_.cell(q) + c];
+  if (w >= 0) {
+    std::array<int, 3> r = q;
+    r[d] = w;
+    return uc[3 * g_.cell(r) + c];
+  }
+  // Outside the box: the ghost value of the viscous operator (2 U_wall - u at a no-slip wall; no gradient on a
+  // free-slip or open side), so that the first cell's strain rate is the wall's, not the next cell's.
+  const Boundary& b = g_.side(d, side > 0 ? 1 : 0);
+  return b.type == BoundaryType::no_slip ? 2.0 * b.wall_velocity[c] - in : in;
+}
+
 std::vector<double> FlowSolver::strain_rate() const {
+  const std::vector<double> parts = strain_parts();
+  std::vector<double> out(g_.cell_count());
+  for (long c = 0; c < g_.cell_count(); ++c) out[c] = std::sqrt(parts[4 * c]);
+  return out;
+}
+
+std::vector<double> FlowSolver::strain_parts() const {
   // Cell-centred velocity gradient: diagonal from the cell's faces, off-diagonal by central differences of the
-  // face-averaged cell velocities (one-sided at walls). Enough for a lagged viscosity; the stresses themselves
-  // use the exact MAC stencils of the viscous operator.
+  // face-averaged cell velocities (ghost values outside the box). Enough for a lagged viscosity; the stresses
+  // themselves use the exact MAC stencils of the viscous operator.
   const std::vector<double> uc = cell_velocity();
-  std::vector<double> out(g_.cell_count(), 0.0);
+  std::vector<double> out(4 * g_.cell_count(), 0.0);
 #pragma omp parallel for schedule(static)
   for (int k = 0; k < g_.n[2]; ++k)
     for (int j = 0; j < g_.n[1]; ++j)
@@ -75,11 +98,7 @@ std::vector<double> FlowSolver::strain_rate() const {
               G[c][c] = (u_[c][g_.face(c, hi)] - u_[c][g_.face(c, q)]) / g_.h[c];
               continue;
             }
-            std::array<int, 3> a = q, b = q;
-            a[d] = g_.clamp_cell(d, q[d] - 1);
-            b[d] = g_.clamp_cell(d, q[d] + 1);
-            const double span = (g_.periodic(d) ? 2 : (b[d] - a[d])) * g_.h[d];
-            G[c][d] = span > 0.0 ? (uc[3 * g_.cell(b) + c] - uc[3 * g_.cell(a) + c]) / span : 0.0;
+            G[c][d] = (neighbour(uc, c, d, q, 1) - neighbour(uc, c, d, q, -1)) / (2.0 * g_.h[d]);
           }
         double dd = 0.0;  // 2 D:D
         for (int c = 0; c < 3; ++c)
@@ -87,7 +106,11 @@ std::vector<double> FlowSolver::strain_rate() const {
             const double e = 0.5 * (G[c][d] + G[d][c]);
             dd += 2.0 * e * e;
           }
-        out[g_.cell(q)] = std::sqrt(dd);
+        double* o = &out[4 * g_.cell(q)];
+        o[0] = dd;
+        o[1] = G[0][1] + G[1][0];
+        o[2] = G[0][2] + G[2][0];
+        o[3] = G[1][2] + G[2][1];
       }
   return out;
 }
@@ -101,18 +124,10 @@ void FlowSolver::update_viscosity(const std::vector<double>& gamma) {
   }
 }
 
-StepStats FlowSolver::step(double dt) {
-  const auto t0 = std::chrono::steady_clock::now();
-  StepStats st;
-  st.dt = dt;
-  // The strain rate of the start of the step (a shear-dependent law is lagged by one step), the paste fraction
-  // after transport.
-  const std::vector<double> gamma = ph_.paste->shear_dependent() ? strain_rate() : std::vector<double>{};
-  st.advection = advect(g_, ph_, dt, totals_.steps, alpha_, u_);
-  const Faces rho = face_densities(g_, ph_, alpha_);
-  update_viscosity(gamma);
-  st.viscous = viscous_.solve(dt, rho, mu_, u_, s_.viscous_tolerance, s_.max_iterations);
+Faces FlowSolver::gravity_kick(double dt) const {
+  Faces kick;
   for (int c = 0; c < 3; ++c) {
+    kick[c].assign(u_[c].size(), 0.0);
     if (s_.gravity[c] == 0.0) continue;
     const auto fd = g_.face_dims(c);
     for (int k = 0; k < fd[2]; ++k)
@@ -120,9 +135,51 @@ StepStats FlowSolver::step(double dt) {
         for (int i = 0; i < fd[0]; ++i) {
           const std::array<int, 3> q{i, j, k};
           if (g_.boundary_face(c, q[c]) && g_.side(c, q[c] == 0 ? 0 : 1).type != BoundaryType::open) continue;
-          u_[c][g_.face(c, q)] += s_.gravity[c] * dt;
+          kick[c][g_.face(c, q)] = s_.gravity[c] * dt;
         }
   }
+  return kick;
+}
+
+StepStats FlowSolver::step(double dt) {
+  const auto t0 = std::chrono::steady_clock::now();
+  StepStats st;
+  st.dt = dt;
+  // The strain rate of the start of the step (a shear-dependent law is lagged by one step), the paste fraction
+  // after transport.
+  const bool lagged = ph_.paste->shear_dependent();
+  const std::vector<double> parts = lagged ? strain_parts() : std::vector<double>{};
+  std::vector<double> gamma;
+  for (std::size_t c = 0; c < parts.size(); c += 4) gamma.push_back(std::sqrt(parts[c]));
+  const Faces u_lag = lagged ? u_ : Faces{};  // the velocity the shear edges' strain rates come from
+  st.advection = advect(g_, ph_, dt, totals_.steps, alpha_, u_);
+  const Faces rho = face_densities(g_, ph_, alpha_);
+  update_viscosity(gamma);
+  const EdgeLaw edge{ph_.paste.get(), &alpha_, ph_.eta_air, &u_lag, &parts};
+  // Incremental pressure correction: gravity and the last pressure gradient enter the viscous solve, the
+  // projection finds the new pressure. A steady state is then the exact discrete balance of gravity, pressure
+  // and the viscous stresses at any dt (with gravity added after the viscous solve, a flow held by shear
+  // stresses, such as a plug or a film, carried an extra g dt on every face). The first step starts from the
+  // pressure that balances as much of gravity as a pressure can, so a paste at rest is at rest from step 1.
+  if (!pressure_ready_) {
+    Faces kick = gravity_kick(dt);
+    pressure_.project(dt, rho, kick, p_, s_.pressure_tolerance, s_.max_iterations);
+    pressure_ready_ = true;
+  }
+  const Faces kick = gravity_kick(dt);
+  double weight = 0.0;  // ||rho_f g|| over the kicked faces, N/m3: the viscous solve's force scale
+  for (int c = 0; c < 3; ++c)
+    for (std::size_t f = 0; f < u_[c].size(); ++f) {
+      u_[c][f] += kick[c][f];
+      const double w = rho[c][f] * kick[c][f] / dt;
+      weight += w * w;
+    }
+  pressure_.subtract_gradient(dt, rho, p_, u_);
+  st.viscous = viscous_.solve(dt, rho, mu_, u_, s_.viscous_tolerance, s_.max_iterations, lagged ? &edge : nullptr,
+                              std::sqrt(weight));
+  // Give the last gradient back and project for the whole pressure, with the last one as the guess: the same
+  // result as projecting for the increment, and the same right-hand side (and CG iterations) as before.
+  pressure_.subtract_gradient(-dt, rho, p_, u_);
   st.projection = pressure_.project(dt, rho, u_, p_, s_.pressure_tolerance, s_.max_iterations);
   for (int c = 0; c < 3; ++c)
     for (double v : u_[c])

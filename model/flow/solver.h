@@ -4,10 +4,13 @@
 // One step of dt (chosen by next_time_step(): the CFL number per sweep, a gravity bound, a cap):
 //   1. advect alpha and the momentum together (model/flow/advection.h: Weymouth & Yue VOF, Rudman-consistent
 //      momentum), with the divergence-free velocity of the last step;
-//   2. cell viscosities from the paste's Rheology at the start-of-step strain rate (mixture by alpha);
-//   3. implicit viscous step, components coupled (model/flow/linear.h), face densities from the new alpha;
-//   4. gravity g dt on every face that is not a wall;
-//   5. projection to a divergence-free velocity (relative residual <= pressure_tolerance).
+//   2. cell viscosities from the paste's Rheology at the start-of-step strain rate (mixture by alpha); a
+//      shear-dependent law is evaluated on each shear edge at the edge's own rate (EdgeLaw, linear.h);
+//   3. gravity g dt on every face that is not a wall, and the last step's pressure gradient (incremental
+//      pressure correction: a steady flow is then exact at any dt);
+//   4. implicit viscous step, components coupled (model/flow/linear.h), face densities from the new alpha;
+//   5. projection to a divergence-free velocity (relative residual <= pressure_tolerance), the last
+//      gradient given back first, so that it solves for the whole new pressure with the last as its guess.
 // The step is the flow's own: a DEM loop can call advance_to(t) with its own times and sub-cycle.
 #pragma once
 
@@ -69,18 +72,23 @@ class FlowSolver {
   const std::vector<double>& viscosity() const { return mu_; }  // Pa s per cell, as used by the last step
   std::vector<double> cell_velocity() const;                     // cells x 3, face means, m/s
   std::vector<double> strain_rate() const;                       // per cell, sqrt(2 D:D), 1/s
+  std::vector<double> strain_parts() const;  // per cell: 2 D:D (1/s^2), gamma_xy, gamma_xz, gamma_yz (1/s)
   const StepStats& last() const { return last_; }
   const CostTotals& totals() const { return totals_; }
 
  private:
-  void update_viscosity(const std::vector<double>& gamma);  // empty: gamma_dot = 0 (a Newtonian law)
+  void update_viscosity(const std::vector<double>& gamma);
+  Faces gravity_kick(double dt) const;  // g dt on every face that is not a wall
+  // Component c of the cell velocity next to cell q along d (side +-1), a wall's ghost value outside the box.
+  double neighbour(const std::vector<double>& uc, int c, int d, const std::array<int, 3>& q, int side) const;  // empty: gamma_dot = 0 (a Newtonian law)
   Grid g_;
   Phases ph_;
   FlowSettings s_;
   ViscousOperator viscous_;
   PressureOperator pressure_;
   Faces u_;
-  std::vector<double> p_, alpha_, mu_;
+  std::vector<double> p_, alpha_, mu_;      // p_: the pressure (Pa)
+  bool pressure_ready_ = false;             // p_ balances gravity (set by the first step after the paste changes)
   double t_ = 0.0;
   StepStats last_;
   CostTotals totals_;

@@ -1,0 +1,156 @@
+// SPDX-License-Identifier: MIT
+// The flow solver's yield-stress validations (model/flow/validations_bingham.h), on `validate flow`:
+//   pastemix validate flow poiseuille [--cells 32] [--m 1000]   Bingham plane Poiseuille, 1/2, 1, 2 x cells
+//   pastemix validate flow incline [--cells 24] [--m 1000]      Bingham film at 0.8 h_c (m, 2 m) and 1.5 h_c
+//   pastemix validate flow cliff [--cells 8] [--m 1000]         vertical cuts of 2 and 6 tau_y/(rho g), m and 2 m
+//   pastemix validate flow slump [--cells 10 5] [--m 1000] [--store out/lab/parameters.toml]   the lab's slump test
+// Each prints its error against the analytic answer, its cost and the paste-volume drift.
+#include <cmath>
+#include <memory>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include <Eigen/Core>
+#include <fmt/format.h>
+#include <omp.h>
+
+#include "app/commands.h"
+#include "model/flow/bingham.h"
+#include "model/flow/validations_bingham.h"
+
+namespace pastemix::app {
+
+namespace {
+
+using namespace pastemix::flow;
+
+void print_cost(const Cost& c, double drift, double divergence) {
+  fmt::print("    cost: {} cells x {} steps in {:.2f} s = {:.3g} cell-steps/s; CG iterations per solve: pressure {:.1f}, "
+             "viscous {:.1f}\n",
+             c.cells, c.steps, c.seconds, c.cell_steps_per_second, c.pressure_iterations, c.viscous_iterations);
+  fmt::print("    paste volume drift {:.3e} (relative); max relative divergence after projection {:.3e}\n", drift,
+             divergence);
+}
+
+void run_poiseuille(int cells, double m) {
+  fmt::print("poiseuille: Bingham plane Poiseuille, H = 2 cm, tau_y 138 Pa, eta_B 0.7 Pa s, plug half-width H/4, "
+             "Papanastasiou m = {:g} s\n",
+             m);
+  std::vector<PoiseuilleResult> res;
+  for (int n : {cells / 2, cells, 2 * cells}) {
+    res.push_back(bingham_poiseuille(n, m));
+    const PoiseuilleResult& r = res.back();
+    fmt::print("  {} cells: L2 error {:.3e} (relative), max {:.3e} of the plug speed; plug width {:.4f} mm (exact "
+               "{:.4f}, {:+.2f} % = {:+.2f} cells); plug speed {:.6f} m/s (exact {:.6f}); steady to {:.1e}\n",
+               n, r.l2_error, r.max_error, 1e3 * r.plug_width, 1e3 * r.plug_width_exact,
+               100 * (r.plug_width / r.plug_width_exact - 1), (r.plug_width - r.plug_width_exact) / (r.H / n),
+               r.plug_speed, r.plug_speed_exact, r.last_change);
+    print_cost(r.cost, r.volume_drift, r.max_divergence);
+  }
+  fmt::print("  observed order (L2): {} -> {}: {:.2f}, {} -> {}: {:.2f}; bound at {} cells: L2 <= 1 %\n", cells / 2,
+             cells, std::log2(res[0].l2_error / res[1].l2_error), cells, 2 * cells,
+             std::log2(res[1].l2_error / res[2].l2_error), cells);
+}
+
+void run_incline(int cells, double m) {
+  fmt::print("incline: Bingham layer on a 30 degree plane, periodic, no-slip floor, air under a lid; tau_y 138 Pa, "
+             "eta_B 0.7 Pa s, rho 1843 kg/m3; {} cells across the layer\n",
+             cells);
+  double creep[2] = {0, 0};
+  int i = 0;
+  for (double mm : {m, 2 * m}) {
+    const InclineResult r = bingham_incline(0.8, cells, mm);
+    creep[i++] = r.surface_speed;
+    fmt::print("  h = 0.8 h_c = {:.3f} mm, m = {:g} s: surface speed {:.3e} m/s (bound 1e-5) after {:.2f} s, last "
+               "change {:.1e}\n",
+               1e3 * r.h, mm, r.surface_speed, r.time, r.last_change);
+    print_cost(r.cost, r.volume_drift, r.max_divergence);
+  }
+  fmt::print("  creep ratio m -> 2 m: {:.4f} (halves or better: >= 2; Papanastasiou's creep rate -ln(1 - tau/tau_y) / m "
+             "gives 2 - O(eta_B / (tau_y m)))\n",
+             creep[0] / creep[1]);
+  for (double mm : {m, 2 * m}) {
+    const InclineResult r = bingham_incline(1.5, cells, mm);
+    fmt::print("  h = 1.5 h_c = {:.3f} mm, m = {:g} s: surface speed {:.6f} m/s, analytic {:.6f}: {:+.3f} % (bound 2 %) "
+               "after {:.2f} s, last change {:.1e}\n",
+               1e3 * r.h, mm, r.surface_speed, r.surface_speed_exact,
+               100 * (r.surface_speed / r.surface_speed_exact - 1), r.time, r.last_change);
+    print_cost(r.cost, r.volume_drift, r.max_divergence);
+  }
+}
+
+void run_cliff(int cells, double m) {
+  fmt::print("cliff: plane-strain vertical cut, tau_y 138 Pa, rho 1843 kg/m3 (tau_y/(rho g) = {:.3f} mm), {} cells "
+             "across H, 2 s; critical height ~3.77 tau_y/(rho g)\n",
+             1e3 * 138.0 / (1843.0 * 9.81), cells);
+  for (double k : {2.0, 6.0})
+    for (double mm : {m, 2 * m}) {
+      const CliffResult r = bingham_cliff(k, cells, mm);
+      fmt::print("  H = {:g} tau_y/(rho g) = {:.2f} mm, m = {:g} s: movement (integral of the max paste speed) {:.3e} "
+                 "m = {:.4f} cells; foot moved {:.3f} mm, top fell {:.3f} mm ({:.1f} % of H)\n",
+                 k, 1e3 * r.H, mm, r.displacement, r.displacement / r.h, 1e3 * r.front_advance, 1e3 * r.top_drop,
+                 100 * r.top_drop / r.H);
+      print_cost(r.cost, r.volume_drift, r.max_divergence);
+    }
+}
+
+void run_slump_at(double cell, double m, double tau_y, double rho, double eta_B) {
+  const SlumpResult r = bingham_slump(cell, m, tau_y, rho, eta_B);
+  fmt::print("  {:g} mm cells, m = {:g} s: {} at t = {:.3f} s (paste speed {:.2e} m/s, rest below {:g})\n", 1e3 * cell, m,
+             r.at_rest ? "at rest" : "NOT at rest", r.time, r.final_speed, kRestSpeed);
+  fmt::print("    slump {:.1f} mm, Pashias-Boger {:.1f} mm: {:+.1f} % (bound 10 % at 5 mm); spread {:.1f} mm, Roussel & "
+             "Coussot {:.1f} mm: {:+.1f} % (bound 10 %)\n",
+             1e3 * r.slump, 1e3 * r.slump_pashias, 100 * (r.slump / r.slump_pashias - 1), 1e3 * r.spread,
+             1e3 * r.spread_roussel, 100 * (r.spread / r.spread_roussel - 1));
+  print_cost(r.cost, r.volume_drift, r.max_divergence);
+}
+
+void run_slump(const std::string& store, const std::vector<double>& cells_mm, double m) {
+  const StorePaste p = read_store_paste(store, 0.75);
+  fmt::print("slump: the 152 mm cylinder (H = D), quarter domain, the 75 % paste from {} ({}: tau_y {:.2f} Pa, eta_B "
+             "{:.3g} Pa s, rho {:.1f} kg/m3), Papanastasiou m = {:g} s\n",
+             store, p.key, p.yield_stress, p.plastic_viscosity, p.density, m);
+  for (double c : cells_mm) run_slump_at(1e-3 * c, m, p.yield_stress, p.density, p.plastic_viscosity);
+}
+
+}  // namespace
+
+void register_flow_bingham_commands(CLI::App& flow) {
+  struct Opts {
+    int cells = 32, threads = 1;
+    double m = 1000.0;
+  };
+  using Run = void (*)(int, double);
+  auto add = [&flow](const char* name, const char* what, int cells, Run run) {
+    auto o = std::make_shared<Opts>();
+    o->cells = cells;
+    CLI::App* a = flow.add_subcommand(name, what);
+    a->add_option("--cells", o->cells, fmt::format("cells across (default {})", cells));
+    a->add_option("--m", o->m, "Papanastasiou regularisation m, s (default 1000)");
+    a->add_option("--threads", o->threads, "OpenMP threads (default 1)");
+    a->callback([o, run] {
+      omp_set_num_threads(o->threads);
+      Eigen::setNbThreads(o->threads);
+      run(o->cells, o->m);
+    });
+  };
+  add("poiseuille", "Bingham plane Poiseuille flow vs the analytic plug profile (cells/2, cells, 2 cells)", 32,
+      run_poiseuille);
+  add("incline", "Bingham layer on an incline: at rest below h_c, the analytic film above", 24, run_incline);
+  auto so = std::make_shared<std::tuple<std::string, std::vector<double>, double, int>>(
+      "out/lab/parameters.toml", std::vector<double>{10.0, 5.0}, 1000.0, 1);
+  CLI::App* sl = flow.add_subcommand("slump", "the lab's slump test vs Pashias-Boger (slump) and Roussel & Coussot (spread)");
+  sl->add_option("--store", std::get<0>(*so), "the lab parameter store (default out/lab/parameters.toml)");
+  sl->add_option("--cells", std::get<1>(*so), "cell sizes in mm (default 10 5)");
+  sl->add_option("--m", std::get<2>(*so), "Papanastasiou regularisation m, s (default 1000)");
+  sl->add_option("--threads", std::get<3>(*so), "OpenMP threads (default 1)");
+  sl->callback([so] {
+    omp_set_num_threads(std::get<3>(*so));
+    Eigen::setNbThreads(std::get<3>(*so));
+    run_slump(std::get<0>(*so), std::get<1>(*so), std::get<2>(*so));
+  });
+  add("cliff", "plane-strain vertical cut: 2 tau_y/(rho g) stands, 6 tau_y/(rho g) collapses", 8, run_cliff);
+}
+
+}  // namespace pastemix::app
