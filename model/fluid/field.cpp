@@ -121,7 +121,7 @@ void FluidField::update_clusters(const Particles& p, const std::vector<std::uint
       for (long a : members_) take(a);  // ascending (the candidates' order)
     else
       for (std::size_t a = 0; a < p.size(); ++a) take(static_cast<long>(a));
-    const CollectiveInput in{&p, &region_members_, &region_d0_, pair_i, pair_j, surface_[k], reg.fluid.yield_stress};
+    const CollectiveInput in{&p, &region_members_, &region_d0_, pair_i, pair_j, surface_[k], reg.yield_stress()};
     const ClusterStats s = collective_.factors(in, region_factor_);
     for (std::size_t q = 0; q < region_members_.size(); ++q) {
       if (region_factor_[q] == 1.0) continue;
@@ -140,24 +140,33 @@ namespace {
 // particle, so each particle still sees one monotone Cd(Re') curve). A particle lighter than the fluid has no
 // finite Y: +inf (only its limit matters to such curves).
 double yield_number(const FluidRegion& reg, double mass, double radius, const Vec3& g) {
-  if (reg.fluid.yield_stress <= 0.0) return 0.0;
+  if (reg.yield_stress() <= 0.0) return 0.0;
   const double d = 2.0 * radius;
   const double rho_p = mass / (4.0 / 3.0 * kPi * radius * radius * radius), gmag = norm(g);
-  return (rho_p > reg.fluid.density && gmag > 0.0) ? reg.fluid.yield_stress / (gmag * d * (rho_p - reg.fluid.density))
+  return (rho_p > reg.density() && gmag > 0.0) ? reg.yield_stress() / (gmag * d * (rho_p - reg.density()))
                                                    : std::numeric_limits<double>::infinity();
 }
 
-// D(s) with or without the yield term (pi d / 2)^2 tau_y (the switch keeps tau_y inside Re').
-double yield_off(const FluidRegion& reg, double d) {
-  return reg.yield_term ? 0.0 : 0.25 * kPi * kPi * d * d * reg.fluid.yield_stress;
+// The law's sphere of particle a's size in region reg, and D(s) with or without the yield term (pi d/2)^2
+// tau_y (the switch keeps tau_y inside Re'), as f(magnitude, d0): one visit of the law per call.
+template <class F>
+auto with_drag(const FluidRegion& reg, double mass, double radius, const Vec3& g, F&& f) {
+  const double y = yield_number(reg, mass, radius, g), d = 2.0 * radius;
+  return std::visit(
+      [&](const auto& prm) {
+        using Law = typename std::decay_t<decltype(prm)>::Law;
+        const auto sphere = Law::sphere(prm, reg.curve, d, y);
+        const double off = reg.yield_term ? 0.0 : Law::yield_term(sphere);
+        auto magnitude = [&](double s) { return Law::magnitude(sphere, s) - off; };
+        return f(magnitude, magnitude(kRestSpeed));
+      },
+      reg.law);
 }
 
 }  // namespace
 
 double FluidField::rest_drag(const FluidRegion& reg, double mass, double radius, const Vec3& g) const {
-  const double y = yield_number(reg, mass, radius, g), d = 2.0 * radius;
-  auto cd = [&](double re) { return reg.curve.cd(re, y); };
-  return drag_magnitude(reg.fluid, cd, kRestSpeed, d) - yield_off(reg, d);
+  return with_drag(reg, mass, radius, g, [](const auto&, double d0) { return d0; });
 }
 
 Vec3 FluidField::kick(long a, const Vec3& v, const Vec3& F, double mass, double radius, double h,
@@ -167,19 +176,15 @@ Vec3 FluidField::kick(long a, const Vec3& v, const Vec3& F, double mass, double 
   const double volume = 4.0 / 3.0 * kPi * radius * radius * radius;
   const double phi = std::min(1.0, vs / volume);  // submerged fraction
   Vec3 force = F;
-  if (reg.buoyancy) force -= g * (reg.fluid.density * vs);
-  const double d = 2.0 * radius;
-  const double off = yield_off(reg, d);
-  const double y = yield_number(reg, mass, radius, g);
-  auto cd = [&](double re) { return reg.curve.cd(re, y); };
-  auto magnitude = [&](double s) { return drag_magnitude(reg.fluid, cd, s, d) - off; };
+  if (reg.buoyancy) force -= g * (reg.density() * vs);
   // m dv/dt = F - phi D  <=>  (m/phi) dv/dt = F/phi - D: the kernel's kick with scaled mass and force.
   const double m_eff = mass / phi;
   const fluid::Vec Fv{force.x / phi, force.y / phi, force.z / phi};
   const fluid::Vec v0{v.x, v.y, v.z};
-  const double d0 = magnitude(kRestSpeed);
   // The cluster's share of the rest resistance (collective.h); the speed-dependent part stays the sphere's.
-  const fluid::Vec out = drag_kick_implicit(magnitude, d0, d0 * yield_factor(a), v0, Fv, m_eff, h);
+  const fluid::Vec out = with_drag(reg, mass, radius, g, [&](const auto& magnitude, double d0) {
+    return drag_kick_implicit(magnitude, d0, d0 * yield_factor(a), v0, Fv, m_eff, h);
+  });
   return {out[0], out[1], out[2]};
 }
 

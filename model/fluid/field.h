@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-// Fluid regions in the engine: buoyancy with partial submergence, Bingham/Newtonian drag through the
-// stable kick of bingham_drag.h, and the free surface rising with the submerged rock volume.
+// Fluid regions in the engine: buoyancy with partial submergence, the region's drag law (laws/drag_law.h,
+// registered in laws/registry.h) through the stable kick of drag_kick.h, and the free surface rising with the
+// submerged rock volume.
 //
 // A region is a box (x/y extent, bottom z) of fluid at rest below a free surface. Each step the World calls
 // update() once, with the positions at the end of the drift, and uses kick() instead of its plain half kick
@@ -11,9 +12,9 @@
 //   buoyancy  -rho_f V_sub g               (V_sub: spherical cap below the surface minus the part below the
 //                                           bottom; with partial_submergence = false the thesis's rule: the
 //                                           full volume once the centre is below the surface, else none)
-//   drag      phi D(|v|) opposing v        (D: Dedegil 4.9 with the region's curve; phi = V_sub / V scales
+//   drag      phi D(|v|) opposing v        (D: the region's drag law with its curve; phi = V_sub / V scales
 //                                           the whole drag, yield term included, by the submerged fraction)
-// The drag enters through drag_kick_implicit (bingham_drag.h, the one kernel) with F = contacts + m g + buoyancy: m dv/dt = F - phi D is
+// The drag enters through drag_kick_implicit (drag_kick.h, the one kernel) with F = contacts + m g + buoyancy: m dv/dt = F - phi D is
 // solved as (m/phi) dv/dt = F/phi - D, the same kernel with a scaled mass and force. The half kick of the
 // Verlet step is thus stable for any dt, and the yield term cannot reverse the velocity (stick, no chatter).
 // No fluid torque is applied (the spin is untouched by the fluid: a stated simplification).
@@ -38,8 +39,9 @@
 #include <vector>
 
 #include "base/drag_curves.h"
-#include "model/fluid/bingham_drag.h"
 #include "model/fluid/collective.h"
+#include "model/fluid/drag_kick.h"
+#include "model/laws/registry.h"
 #include "model/particles.h"
 
 namespace pastemix::model::fluid {
@@ -49,9 +51,8 @@ struct FluidRegion {
   double x_min = 0, x_max = 0, y_min = 0, y_max = 0;  // m, horizontal extent of the box
   double z_bottom = 0;                                // m, bottom of the box
   double z_surface0 = 0;                              // m, free surface without rock
-  BinghamFluid fluid;                                 // density, yield stress (0: Newtonian), viscosity
-  drag::DragCurve curve;                              // Cd(Re') by name (stokes for Newtonian)
-  std::string rheology = "newtonian";                 // "newtonian" | "bingham"
+  DragParams law;                                     // the drag law (its scene name: rheology) and values
+  drag::DragCurve curve;                              // Cd(Re') by name
   double solids_fraction = 0.0;                       // -, mass fraction of solids (for the analysis maps)
   bool buoyancy = true, yield_term = true, partial_submergence = true, surface_rise = true;
   // Collective yield resistance of touching spheres (collective.h): off unless the scene asks for it.
@@ -59,6 +60,11 @@ struct FluidRegion {
   double collective_interval = 5e-4;  // s of simulated time between two cluster updates
 
   double area() const { return (x_max - x_min) * (y_max - y_min); }
+  double density() const { return std::visit([](const auto& p) { return p.density; }, law); }  // kg/m3
+  double yield_stress() const { return std::visit([](const auto& p) { return p.yield_stress; }, law); }  // Pa
+  std::string law_name() const {
+    return std::visit([](const auto& p) { return std::string(std::decay_t<decltype(p)>::Law::name); }, law);
+  }
   bool contains_xy(double x, double y) const { return x >= x_min && x <= x_max && y >= y_min && y <= y_max; }
 };
 
