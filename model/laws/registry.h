@@ -19,6 +19,7 @@
 #include "model/laws/elastic_plastic.h"
 #include "model/laws/drag_law.h"
 #include "model/laws/hertz_mindlin.h"
+#include "model/laws/herschel_bulkley.h"
 #include "model/laws/law_list.h"
 #include "model/laws/newtonian_stokes.h"
 #include "model/laws/no_rolling.h"
@@ -45,7 +46,7 @@ using DragLawList = LawList<Laws...>;
 using ContactLaws = ContactLawList<HertzMindlin>;
 using RollingLaws = RollingLawList<NoRolling, ConstantTorque, ElasticPlastic, ConstantTorqueRstar>;
 
-using DragLaws = DragLawList<NewtonianStokes, BinghamDedegil>;
+using DragLaws = DragLawList<NewtonianStokes, BinghamDedegil, HerschelBulkley>;
 
 using LawTable = ContactLaws::Table;
 using DragParams = DragLaws::One;  // a fluid region's drag law and its values
