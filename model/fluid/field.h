@@ -81,12 +81,14 @@ class FluidField {
   void set_step(double dt, const Vec3& g) { dt_ = dt, g_ = g; }
   // Candidate list (see above): margin in m (the Verlet skin); stale at every pair-list rebuild.
   void set_candidate_margin(double margin) { margin_ = margin, stale_ = true; }
-  void mark_stale() { stale_ = true; }
+  // The pair list was rebuilt (World): also invalidates the clusters kept while nothing moved.
+  void mark_stale() { stale_ = true, ++pairs_version_; }
   // Particles were removed (World, on_exit = "remove"): every per-particle flag and list is anew at the
   // next update() (region_of_ no longer matches the particle count), the candidates refreshed.
   void particles_removed() {
     region_of_.clear(), v_sub_.clear(), members_.clear(), candidates_.clear(), stale_ = true;
     factor_.clear(), factored_.clear();  // indices changed: the clusters are recomputed at the next update
+    phi_.clear(), y_.clear(), d0_.clear(), rest_region_.clear(), clustered_members_.clear();
   }
   std::size_t candidate_count() const { return margin_ > 0.0 ? candidates_.size() : region_of_.size(); }
   // New velocity after a kick of length h (s) of particle a under the non-drag force F (N, gravity
@@ -117,6 +119,20 @@ class FluidField {
   std::vector<double> surface_at_refresh_;  // m, per region
   std::vector<double> wet_;                 // m3 per region, scratch of update()
   void refresh(const Particles& p);
+  // Per particle, what the kick needs and update() already knows (the kick's own expressions, so the same
+  // bits): the submerged fraction phi of this step, and, while the particle stays in region rest_region_,
+  // its yield number and rest drag D(0+) (both constant for a sphere in one fluid; gravity g_).
+  std::vector<double> phi_, y_, d0_;
+  std::vector<int> rest_region_;
+  void keep_sphere(const Particles& p, std::size_t a, int region);
+  // Clusters are recomputed only when their input changed: the members, their positions, the surfaces or
+  // the pair list (a bed at rest in the paste keeps its clusters, to the bit: the same input, the same
+  // factors).
+  long pairs_version_ = 0, clustered_version_ = -1;
+  std::vector<long> clustered_members_;
+  std::vector<Vec3> clustered_x_;
+  std::vector<double> clustered_surface_;
+  bool clusters_unchanged(const Particles& p) const;
   // Collective yield (collective.h): per-particle factor (empty while no region is collective), the
   // particles it was last set for, steps since the last cluster update.
   double dt_ = 0.0;
@@ -131,8 +147,6 @@ class FluidField {
   std::vector<double> region_d0_, region_factor_;
   void update_clusters(const Particles& p, const std::vector<std::uint32_t>* pair_i,
                        const std::vector<std::uint32_t>* pair_j);
-  // D(0+) of particle a in region reg (N, whole sphere: the submerged fraction not applied).
-  double rest_drag(const FluidRegion& reg, double mass, double radius, const Vec3& g) const;
 };
 
 }  // namespace pastemix::model::fluid

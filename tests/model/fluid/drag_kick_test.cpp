@@ -117,3 +117,27 @@ TEST_CASE("fluid: submerged volume of a sphere below a free surface") {
   const double h = 0.3 * r;  // a cap of depth h
   CHECK(submerged_volume(r - h, r, 0.0) == doctest::Approx(kPi * h * h * (3 * r - h) / 3).epsilon(1e-14));
 }
+
+TEST_CASE("fluid: the kick's rest shortcut returns what the iterations return, on both sides of the threshold") {
+  // drag_kick_implicit returns v = 0 at once for a sphere at rest whose |F| is below its held resistance
+  // (minus 1e-12). The iterated kernel (drag_kick with the slope at 1e-9 m/s, as the iterations take it at
+  // rest) must give v = 0 there too, and just above the threshold neither may stop the sphere.
+  const Fluid paste{1843.0, 136.0, 0.7};
+  const double d = 0.005, m = 2760.0 * kPi * d * d * d / 6.0, h = 5e-6;
+  auto magnitude = [&](double s) { return drag_magnitude(paste, published, s, d); };
+  const double d0 = magnitude(kRestSpeed);
+  const DragSplit at_rest{d0, std::max(0.0, (magnitude(1e-9) - d0) / 1e-9)};
+  for (double dir : {0.0, 0.3, 1.2}) {
+    for (double rel : {0.5, 1.0 - 1e-9, 1.0 - 2e-12}) {
+      const double f = d0 * rel;
+      const Vec F{f * std::sin(dir), 0.0, -f * std::cos(dir)};
+      const Vec fast = drag_kick_implicit(magnitude, d0, d0, Vec{0, 0, 0}, F, m, h);
+      const Vec slow = drag_kick(Vec{0, 0, 0}, F, m, h, at_rest);
+      for (int c = 0; c < 3; ++c) CHECK(fast[c] == slow[c]);
+      CHECK(fast[2] == 0.0);
+    }
+    const double f = d0 * (1.0 + 1e-9);
+    const Vec F{f * std::sin(dir), 0.0, -f * std::cos(dir)};
+    CHECK(drag_kick_implicit(magnitude, d0, d0, Vec{0, 0, 0}, F, m, h)[2] < 0.0);
+  }
+}
