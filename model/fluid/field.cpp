@@ -202,8 +202,10 @@ Vec3 FluidField::kick(long a, const Vec3& v, const Vec3& F, double mass, double 
   Vec3 force = F;
   if (reg.buoyancy) force -= g * (reg.density() * vs);
   // m dv/dt = F - phi D  <=>  (m/phi) dv/dt = F/phi - D: the kernel's kick with scaled mass and force.
-  const double m_eff = mass / phi;
-  const fluid::Vec Fv{force.x / phi, force.y / phi, force.z / phi};
+  // (x / 1 is x exactly: a sphere fully under the surface skips the four divisions, the same bits.)
+  const bool whole = phi == 1.0;
+  const double m_eff = whole ? mass : mass / phi;
+  const fluid::Vec Fv = whole ? fluid::Vec{force.x, force.y, force.z} : fluid::Vec{force.x / phi, force.y / phi, force.z / phi};
   const fluid::Vec v0{v.x, v.y, v.z};
   // The sphere's constants kept by update() (for the gravity they were kept for; a caller with another
   // gravity gets them anew).
