@@ -20,7 +20,7 @@ LIGGGHTS_LOOP = re.compile(
     r"Loop time of ([0-9.eE+-]+) on (\d+) procs for (\d+) steps with (\d+) atoms")
 LIGGGHTS_STAGE = re.compile(r"^(Pair|Neigh|Comm|Outpt|Modfy|Other) +time \(%\) = ([0-9.eE+-]+) \(([0-9.eE+-]+)\)")
 LIGGGHTS_BUILDS = re.compile(r"Neighbor list builds = (\d+)")
-LOGNAME = re.compile(r"(liggghts|pastemix)_(\w+?)_t(\d+)_r(\d+)\.log$")
+LOGNAME = re.compile(r"(liggghts|pastemix|baseline)_(\w+?)_t(\d+)_r(\d+)\.log$")
 
 
 def parse_liggghts(text):
@@ -106,6 +106,19 @@ def read_cpu(path):
         return None
 
 
+def read_maxrss_kb(path):
+    """Peak RSS (kB) of the largest process of a run (tools/cputime.py), or None for an older .cpu file."""
+    try:
+        with open(path) as f:
+            for line in f:
+                k, v = line.split()
+                if k == "maxrss_kB":
+                    return int(v)
+    except (OSError, ValueError):
+        pass
+    return None
+
+
 def collect(work, finals):
     """Best (shortest-loop) run per (code, scene, threads); also the least loop CPU time over the repeats
     (CPU of the run minus CPU of the 1-step setup run: see tools/cputime.py)."""
@@ -122,8 +135,8 @@ def collect(work, finals):
         if r is None:
             print("report: no loop time in %s" % path, file=sys.stderr)
             continue
-        if code == "pastemix":
-            h5 = glob.glob(os.path.join(work, "out_%s_t%d_r%s" % (scene, threads, n.group(4)), "*.h5"))
+        if code != "liggghts":
+            h5 = glob.glob(os.path.join(work, "out_%s_%s_t%d_r%s" % (code, scene, threads, n.group(4)), "*.h5"))
             r["final"] = pastemix_final_state(h5[0]) if h5 else None
         key = (code, scene, threads)
         cpu, setup = read_cpu(path + ".cpu"), read_cpu(
@@ -132,6 +145,7 @@ def collect(work, finals):
             cpu_best[key] = min(cpu_best.get(key, float("inf")), cpu - setup)
         if r["final"] is not None:
             finals.setdefault(key, r["final"])  # the first repeat that has one
+        r["maxrss_kB"] = read_maxrss_kb(path + ".cpu")
         r["runs"] = best.get(key, {}).get("runs", 0) + 1
         r["log"] = os.path.basename(path)
         if key not in best or r["loop_s"] < best[key]["loop_s"]:
@@ -186,7 +200,46 @@ def main():
                     rows.append([stamp, s, t, code, r["particles"], r["steps"], "%.6g" % r["loop_s"],
                                  r["runs"], "%.6g" % mps(r), "%.4g" % ratio if ratio else "",
                                  "%.6g" % r["cpu_s"] if r.get("cpu_s") else "",
-                                 "%.6g" % cpu_mps(r) if cpu_mps(r) else "", stage_text(r), r["log"]])
+                                 "%.6g" % cpu_mps(r) if cpu_mps(r) else "", stage_text(r), r["log"],
+                                 r.get("maxrss_kB") or ""])
+    if any(k[0] == "baseline" for k in best):
+        print("\nthis build against the baseline build (PASTEMIX_BASELINE), interleaved in the same run:")
+        print("%-6s %7s %16s %16s %12s %22s" % ("scene", "threads", "pastemix Mps/s", "baseline Mps/s",
+                                               "pm/baseline", "baseline/LIGGGHTS"))
+        for s in scenes:
+            for t in threads:
+                p, b, l = (best.get((c, s, t)) for c in ("pastemix", "baseline", "liggghts"))
+                print("%-6s %7d %16s %16s %12s %22s" % (
+                    s, t, "%.3f" % mps(p) if p else "-", "%.3f" % mps(b) if b else "-",
+                    "%.3f" % (mps(p) / mps(b)) if (p and b) else "-",
+                    "%.2f" % (mps(b) / mps(l)) if (b and l) else "-"))
+                if b:
+                    rows.append([stamp, s, t, "baseline", b["particles"], b["steps"], "%.6g" % b["loop_s"],
+                                 b["runs"], "%.6g" % mps(b), "%.4g" % (mps(b) / mps(l)) if l else "",
+                                 "%.6g" % b["cpu_s"] if b.get("cpu_s") else "",
+                                 "%.6g" % cpu_mps(b) if cpu_mps(b) else "", stage_text(b), b["log"],
+                                 b.get("maxrss_kB") or ""])
+    if len(threads) > 1:
+        lo, hi = threads[0], threads[-1]
+        print("\nspeed-up from %d to %d thread(s)/rank(s) (best runs, wall clock):" % (lo, hi))
+        print("%-6s %10s %10s" % ("scene", "pastemix", "LIGGGHTS"))
+        for s in scenes:
+            ups = []
+            for code in ("pastemix", "liggghts"):
+                a, b = best.get((code, s, lo)), best.get((code, s, hi))
+                ups.append("%.2fx" % (mps(b) / mps(a)) if (a and b) else "-")
+            print("%-6s %10s %10s" % (s, *ups))
+    print("\npeak memory per particle (peak RSS of the largest process / N; includes the binary, its libraries "
+          "and input parsing; at 2+ ranks one LIGGGHTS rank holds about 1/ranks of the particles):")
+    print("%-6s %7s %16s %16s" % ("scene", "threads", "pastemix B", "LIGGGHTS B"))
+    for s in scenes:
+        for t in threads:
+            cells = []
+            for code in ("pastemix", "liggghts"):
+                r = best.get((code, s, t))
+                kb = r.get("maxrss_kB") if r else None
+                cells.append("%.0f (%.0f MB)" % (kb * 1024 / r["particles"], kb / 1024) if kb else "-")
+            print("%-6s %7d %16s %16s" % (s, t, *cells))
     print("\nwhere the time goes (share of the loop time, best run):")
     for (code, s, t), r in sorted(best.items(), key=lambda kv: (kv[0][1], kv[0][2], kv[0][0])):
         print("  %-8s %-5s t%d: %s" % (code, s, t, stage_text(r)))
@@ -202,7 +255,7 @@ def main():
     with open(csv_out, "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(["date_utc", "scene", "threads", "code", "particles", "steps", "loop_s", "runs", "mps",
-                    "ratio_pastemix_over_liggghts", "loop_cpu_s", "mps_per_cpu_s", "stages", "log", "load_avg_1min", "settings"])
+                    "ratio_pastemix_over_liggghts", "loop_cpu_s", "mps_per_cpu_s", "stages", "log", "maxrss_kB", "load_avg_1min", "settings"])
         for row in rows:
             w.writerow(row + ["%.1f" % load[0], os.environ.get("BENCH_SETTINGS", "")])
     print("\nwrote %s" % csv_out)
