@@ -54,7 +54,7 @@ RunOutput::RunOutput(const std::filesystem::path& h5_path, std::string h5_final_
   // Fluid (only with [[fluid]]): the first region's fluid for the analysis layer.
   if (!scene.fluid.empty()) {
     const auto& f = scene.fluid.front();
-    h5_->attribute("/", "fluid_density", f.fluid.density);
+    h5_->attribute("/", "fluid_density", f.density());
     h5_->attribute("/", "fluid_solids_fraction", f.solids_fraction);
     h5_->attribute("/", "fluid_region_count", static_cast<std::int64_t>(scene.fluid.size()));
   }

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Collective yield resistance: touching spheres share the paste's resistance (shadowing, footing capacity).
 //
-// Why. The per-sphere drag (bingham_drag.h) gives every submerged sphere its own rest resistance
+// Why. The per-sphere drag (laws/bingham_dedegil.h, kicked by drag_kick.h) gives every submerged sphere its own rest resistance
 // D0 = N_ball tau_y pi d^2 / 4 with N_ball ~ 15 (the full-flow factor of a ball pushed through a plastic
 // medium: Dedegil's yield term plus the 24/Re' branch of Cd). That is right for an isolated sphere, but a
 // pile of touching spheres then resists with the SUM over its submerged spheres: one layer of spheres

@@ -55,6 +55,7 @@ void FluidField::update(const Particles& p, const std::vector<std::uint32_t>* pa
   if (!listed || region_of_.size() != n) {  // every flag anew (no list, or particles were added)
     region_of_.assign(n, -1);
     v_sub_.assign(n, 0.0);
+    if (rest_region_.size() != n) phi_.assign(n, 0.0), y_.assign(n, 0.0), d0_.assign(n, 0.0), rest_region_.assign(n, -1);
     members_.clear();
     stale_ = listed;
   }
@@ -76,6 +77,7 @@ void FluidField::update(const Particles& p, const std::vector<std::uint32_t>* pa
       if (vs <= 0.0) continue;
       region_of_[a] = static_cast<int>(k);
       v_sub_[a] = vs;
+      keep_sphere(p, a, static_cast<int>(k));
       members_.push_back(static_cast<long>(a));
       wet[k] += vs;
       return;  // the first region that holds the particle owns it
@@ -93,8 +95,19 @@ void FluidField::update(const Particles& p, const std::vector<std::uint32_t>* pa
   if (cluster_interval_ == INFINITY) return;
   if (factor_.size() != n) factor_.assign(n, 1.0), factored_.clear(), since_clusters_ = 0;
   const long every = dt_ > 0.0 ? std::max(1L, std::lround(cluster_interval_ / dt_)) : 1L;
-  if (since_clusters_ % every == 0) update_clusters(p, pair_i, pair_j);
+  if (since_clusters_ % every == 0 && !clusters_unchanged(p)) update_clusters(p, pair_i, pair_j);
   ++since_clusters_;
+}
+
+bool FluidField::clusters_unchanged(const Particles& p) const {
+  if (clustered_version_ != pairs_version_ || clustered_members_ != members_ || clustered_surface_ != surface_)
+    return false;
+  for (std::size_t q = 0; q < members_.size(); ++q) {
+    const Vec3& x = p.x[static_cast<std::size_t>(members_[q])];
+    const Vec3& x0 = clustered_x_[q];
+    if (x.x != x0.x || x.y != x0.y || x.z != x0.z) return false;
+  }
+  return true;
 }
 
 void FluidField::update_clusters(const Particles& p, const std::vector<std::uint32_t>* pair_i,
@@ -112,16 +125,14 @@ void FluidField::update_clusters(const Particles& p, const std::vector<std::uint
     auto take = [&](long a) {
       const std::size_t i = static_cast<std::size_t>(a);
       if (region_of_[i] != static_cast<int>(k)) return;
-      const double r = p.radius[i];
-      const double phi = std::min(1.0, v_sub_[i] / (4.0 / 3.0 * kPi * r * r * r));
       region_members_.push_back(a);
-      region_d0_.push_back(phi * rest_drag(reg, p.mass[i], r, g_));
+      region_d0_.push_back(phi_[i] * d0_[i]);  // phi D(0+) (keep_sphere: this region, gravity g_)
     };
     if (listed)
       for (long a : members_) take(a);  // ascending (the candidates' order)
     else
       for (std::size_t a = 0; a < p.size(); ++a) take(static_cast<long>(a));
-    const CollectiveInput in{&p, &region_members_, &region_d0_, pair_i, pair_j, surface_[k], reg.fluid.yield_stress};
+    const CollectiveInput in{&p, &region_members_, &region_d0_, pair_i, pair_j, surface_[k], reg.yield_stress()};
     const ClusterStats s = collective_.factors(in, region_factor_);
     for (std::size_t q = 0; q < region_members_.size(); ++q) {
       if (region_factor_[q] == 1.0) continue;
@@ -132,6 +143,9 @@ void FluidField::update_clusters(const Particles& p, const std::vector<std::uint
     stats_.largest = std::max(stats_.largest, s.largest);
     stats_.min_factor = std::min(stats_.min_factor, s.min_factor);
   }
+  clustered_version_ = pairs_version_, clustered_members_ = members_, clustered_surface_ = surface_;
+  clustered_x_.resize(members_.size());
+  for (std::size_t q = 0; q < members_.size(); ++q) clustered_x_[q] = p.x[static_cast<std::size_t>(members_[q])];
 }
 
 namespace {
@@ -140,46 +154,68 @@ namespace {
 // particle, so each particle still sees one monotone Cd(Re') curve). A particle lighter than the fluid has no
 // finite Y: +inf (only its limit matters to such curves).
 double yield_number(const FluidRegion& reg, double mass, double radius, const Vec3& g) {
-  if (reg.fluid.yield_stress <= 0.0) return 0.0;
+  if (reg.yield_stress() <= 0.0) return 0.0;
   const double d = 2.0 * radius;
   const double rho_p = mass / (4.0 / 3.0 * kPi * radius * radius * radius), gmag = norm(g);
-  return (rho_p > reg.fluid.density && gmag > 0.0) ? reg.fluid.yield_stress / (gmag * d * (rho_p - reg.fluid.density))
+  return (rho_p > reg.density() && gmag > 0.0) ? reg.yield_stress() / (gmag * d * (rho_p - reg.density()))
                                                    : std::numeric_limits<double>::infinity();
 }
 
-// D(s) with or without the yield term (pi d / 2)^2 tau_y (the switch keeps tau_y inside Re').
-double yield_off(const FluidRegion& reg, double d) {
-  return reg.yield_term ? 0.0 : 0.25 * kPi * kPi * d * d * reg.fluid.yield_stress;
+// The law's sphere of diameter 2 radius and yield number y in region reg, and D(s) with or without the yield
+// term (pi d/2)^2 tau_y (the switch keeps tau_y inside Re'): f(magnitude), one visit of the law per call.
+template <class F>
+auto with_drag(const FluidRegion& reg, double y, double radius, F&& f) {
+  const double d = 2.0 * radius;
+  return std::visit(
+      [&](const auto& prm) {
+        using Law = typename std::decay_t<decltype(prm)>::Law;
+        const auto sphere = Law::sphere(prm, reg.curve, d, y);
+        const double off = reg.yield_term ? 0.0 : Law::yield_term(sphere);
+        return f([&](double s) { return Law::magnitude(sphere, s) - off; });
+      },
+      reg.law);
+}
+
+double rest_drag(const FluidRegion& reg, double y, double radius) {
+  return with_drag(reg, y, radius, [](const auto& magnitude) { return magnitude(kRestSpeed); });
 }
 
 }  // namespace
 
-double FluidField::rest_drag(const FluidRegion& reg, double mass, double radius, const Vec3& g) const {
-  const double y = yield_number(reg, mass, radius, g), d = 2.0 * radius;
-  auto cd = [&](double re) { return reg.curve.cd(re, y); };
-  return drag_magnitude(reg.fluid, cd, kRestSpeed, d) - yield_off(reg, d);
+void FluidField::keep_sphere(const Particles& p, std::size_t a, int region) {
+  const double r = p.radius[a];
+  const double volume = 4.0 / 3.0 * kPi * r * r * r;
+  phi_[a] = std::min(1.0, v_sub_[a] / volume);
+  if (rest_region_[a] == region) return;
+  const FluidRegion& reg = regions_[static_cast<std::size_t>(region)];
+  y_[a] = yield_number(reg, p.mass[a], r, g_);
+  d0_[a] = rest_drag(reg, y_[a], r);
+  rest_region_[a] = region;
 }
 
 Vec3 FluidField::kick(long a, const Vec3& v, const Vec3& F, double mass, double radius, double h,
                       const Vec3& g) const {
-  const FluidRegion& reg = regions_[region_of_[a]];
-  const double vs = v_sub_[a];
-  const double volume = 4.0 / 3.0 * kPi * radius * radius * radius;
-  const double phi = std::min(1.0, vs / volume);  // submerged fraction
+  const std::size_t i = static_cast<std::size_t>(a);
+  const FluidRegion& reg = regions_[static_cast<std::size_t>(region_of_[i])];
+  const double vs = v_sub_[i];
+  const double phi = phi_[i];  // submerged fraction (update())
   Vec3 force = F;
-  if (reg.buoyancy) force -= g * (reg.fluid.density * vs);
-  const double d = 2.0 * radius;
-  const double off = yield_off(reg, d);
-  const double y = yield_number(reg, mass, radius, g);
-  auto cd = [&](double re) { return reg.curve.cd(re, y); };
-  auto magnitude = [&](double s) { return drag_magnitude(reg.fluid, cd, s, d) - off; };
+  if (reg.buoyancy) force -= g * (reg.density() * vs);
   // m dv/dt = F - phi D  <=>  (m/phi) dv/dt = F/phi - D: the kernel's kick with scaled mass and force.
-  const double m_eff = mass / phi;
-  const fluid::Vec Fv{force.x / phi, force.y / phi, force.z / phi};
+  // (x / 1 is x exactly: a sphere fully under the surface skips the four divisions, the same bits.)
+  const bool whole = phi == 1.0;
+  const double m_eff = whole ? mass : mass / phi;
+  const fluid::Vec Fv = whole ? fluid::Vec{force.x, force.y, force.z} : fluid::Vec{force.x / phi, force.y / phi, force.z / phi};
   const fluid::Vec v0{v.x, v.y, v.z};
-  const double d0 = magnitude(kRestSpeed);
+  // The sphere's constants kept by update() (for the gravity they were kept for; a caller with another
+  // gravity gets them anew).
+  const bool kept = g.x == g_.x && g.y == g_.y && g.z == g_.z;
+  const double y = kept ? y_[i] : yield_number(reg, mass, radius, g);
+  const double d0 = kept ? d0_[i] : rest_drag(reg, y, radius);
   // The cluster's share of the rest resistance (collective.h); the speed-dependent part stays the sphere's.
-  const fluid::Vec out = drag_kick_implicit(magnitude, d0, d0 * yield_factor(a), v0, Fv, m_eff, h);
+  const fluid::Vec out = with_drag(reg, y, radius, [&](const auto& magnitude) {
+    return drag_kick_implicit(magnitude, d0, d0 * yield_factor(a), v0, Fv, m_eff, h);
+  });
   return {out[0], out[1], out[2]};
 }
 

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-// Fluid regions in the engine: buoyancy with partial submergence, Bingham/Newtonian drag through the
-// stable kick of bingham_drag.h, and the free surface rising with the submerged rock volume.
+// Fluid regions in the engine: buoyancy with partial submergence, the region's drag law (laws/drag_law.h,
+// registered in laws/registry.h) through the stable kick of drag_kick.h, and the free surface rising with the
+// submerged rock volume.
 //
 // A region is a box (x/y extent, bottom z) of fluid at rest below a free surface. Each step the World calls
 // update() once, with the positions at the end of the drift, and uses kick() instead of its plain half kick
@@ -11,9 +12,9 @@
 //   buoyancy  -rho_f V_sub g               (V_sub: spherical cap below the surface minus the part below the
 //                                           bottom; with partial_submergence = false the thesis's rule: the
 //                                           full volume once the centre is below the surface, else none)
-//   drag      phi D(|v|) opposing v        (D: Dedegil 4.9 with the region's curve; phi = V_sub / V scales
+//   drag      phi D(|v|) opposing v        (D: the region's drag law with its curve; phi = V_sub / V scales
 //                                           the whole drag, yield term included, by the submerged fraction)
-// The drag enters through drag_kick_implicit (bingham_drag.h, the one kernel) with F = contacts + m g + buoyancy: m dv/dt = F - phi D is
+// The drag enters through drag_kick_implicit (drag_kick.h, the one kernel) with F = contacts + m g + buoyancy: m dv/dt = F - phi D is
 // solved as (m/phi) dv/dt = F/phi - D, the same kernel with a scaled mass and force. The half kick of the
 // Verlet step is thus stable for any dt, and the yield term cannot reverse the velocity (stick, no chatter).
 // No fluid torque is applied (the spin is untouched by the fluid: a stated simplification).
@@ -38,8 +39,9 @@
 #include <vector>
 
 #include "base/drag_curves.h"
-#include "model/fluid/bingham_drag.h"
 #include "model/fluid/collective.h"
+#include "model/fluid/drag_kick.h"
+#include "model/laws/registry.h"
 #include "model/particles.h"
 
 namespace pastemix::model::fluid {
@@ -49,9 +51,8 @@ struct FluidRegion {
   double x_min = 0, x_max = 0, y_min = 0, y_max = 0;  // m, horizontal extent of the box
   double z_bottom = 0;                                // m, bottom of the box
   double z_surface0 = 0;                              // m, free surface without rock
-  BinghamFluid fluid;                                 // density, yield stress (0: Newtonian), viscosity
-  drag::DragCurve curve;                              // Cd(Re') by name (stokes for Newtonian)
-  std::string rheology = "newtonian";                 // "newtonian" | "bingham"
+  DragParams law;                                     // the drag law (its scene name: rheology) and values
+  drag::DragCurve curve;                              // Cd(Re') by name
   double solids_fraction = 0.0;                       // -, mass fraction of solids (for the analysis maps)
   bool buoyancy = true, yield_term = true, partial_submergence = true, surface_rise = true;
   // Collective yield resistance of touching spheres (collective.h): off unless the scene asks for it.
@@ -59,6 +60,11 @@ struct FluidRegion {
   double collective_interval = 5e-4;  // s of simulated time between two cluster updates
 
   double area() const { return (x_max - x_min) * (y_max - y_min); }
+  double density() const { return std::visit([](const auto& p) { return p.density; }, law); }  // kg/m3
+  double yield_stress() const { return std::visit([](const auto& p) { return p.yield_stress; }, law); }  // Pa
+  std::string law_name() const {
+    return std::visit([](const auto& p) { return std::string(std::decay_t<decltype(p)>::Law::name); }, law);
+  }
   bool contains_xy(double x, double y) const { return x >= x_min && x <= x_max && y >= y_min && y <= y_max; }
 };
 
@@ -75,12 +81,14 @@ class FluidField {
   void set_step(double dt, const Vec3& g) { dt_ = dt, g_ = g; }
   // Candidate list (see above): margin in m (the Verlet skin); stale at every pair-list rebuild.
   void set_candidate_margin(double margin) { margin_ = margin, stale_ = true; }
-  void mark_stale() { stale_ = true; }
+  // The pair list was rebuilt (World): also invalidates the clusters kept while nothing moved.
+  void mark_stale() { stale_ = true, ++pairs_version_; }
   // Particles were removed (World, on_exit = "remove"): every per-particle flag and list is anew at the
   // next update() (region_of_ no longer matches the particle count), the candidates refreshed.
   void particles_removed() {
     region_of_.clear(), v_sub_.clear(), members_.clear(), candidates_.clear(), stale_ = true;
     factor_.clear(), factored_.clear();  // indices changed: the clusters are recomputed at the next update
+    phi_.clear(), y_.clear(), d0_.clear(), rest_region_.clear(), clustered_members_.clear();
   }
   std::size_t candidate_count() const { return margin_ > 0.0 ? candidates_.size() : region_of_.size(); }
   // New velocity after a kick of length h (s) of particle a under the non-drag force F (N, gravity
@@ -111,6 +119,20 @@ class FluidField {
   std::vector<double> surface_at_refresh_;  // m, per region
   std::vector<double> wet_;                 // m3 per region, scratch of update()
   void refresh(const Particles& p);
+  // Per particle, what the kick needs and update() already knows (the kick's own expressions, so the same
+  // bits): the submerged fraction phi of this step, and, while the particle stays in region rest_region_,
+  // its yield number and rest drag D(0+) (both constant for a sphere in one fluid; gravity g_).
+  std::vector<double> phi_, y_, d0_;
+  std::vector<int> rest_region_;
+  void keep_sphere(const Particles& p, std::size_t a, int region);
+  // Clusters are recomputed only when their input changed: the members, their positions, the surfaces or
+  // the pair list (a bed at rest in the paste keeps its clusters, to the bit: the same input, the same
+  // factors).
+  long pairs_version_ = 0, clustered_version_ = -1;
+  std::vector<long> clustered_members_;
+  std::vector<Vec3> clustered_x_;
+  std::vector<double> clustered_surface_;
+  bool clusters_unchanged(const Particles& p) const;
   // Collective yield (collective.h): per-particle factor (empty while no region is collective), the
   // particles it was last set for, steps since the last cluster update.
   double dt_ = 0.0;
@@ -125,8 +147,6 @@ class FluidField {
   std::vector<double> region_d0_, region_factor_;
   void update_clusters(const Particles& p, const std::vector<std::uint32_t>* pair_i,
                        const std::vector<std::uint32_t>* pair_j);
-  // D(0+) of particle a in region reg (N, whole sphere: the submerged fraction not applied).
-  double rest_drag(const FluidRegion& reg, double mass, double radius, const Vec3& g) const;
 };
 
 }  // namespace pastemix::model::fluid

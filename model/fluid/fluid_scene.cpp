@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "base/error.h"
+#include "model/laws/registry.h"
 
 namespace pastemix::model::fluid {
 
@@ -46,10 +47,22 @@ drag::DragCurve read_curve(const Params& f, const std::string& scene_path, const
   return c;
 }
 
+// The name of the drag law that takes a lab store's paste rheology (the one with from_store).
+std::string store_law() {
+  std::string name;
+  for (const std::string& n : DragLaws::names())
+    DragLaws::with(n, [&](auto law) {
+      using Law = typename decltype(law)::type;
+      if constexpr (requires { Law::from_store(1.0, 1.0, 1.0); }) name = Law::name;
+    });
+  return name;
+}
+
 // [[fluid]] rheology_from = STORE: tau_y, eta_B and the density at the region's solids content, read from the
 // lab parameter store (never numbers typed into the scene), with the drag curve the store's eta_B belongs to.
-void read_rheology_from(const Params& f, const std::string& scene_path, FluidRegion& r) {
-  if (r.rheology != "bingham") f.fail("rheology_from", "a store's paste rheology is Bingham: set rheology = \"bingham\"");
+void read_rheology_from(const Params& f, const std::string& scene_path, const std::string& law, FluidRegion& r) {
+  if (law != store_law())
+    f.fail("rheology_from", fmt::format("a store's paste rheology is {0}: set rheology = \"{0}\"", store_law()));
   for (const char* key : {"yield_stress", "plastic_viscosity", "density", "viscosity"})
     if (f.has(key)) f.fail(key, fmt::format("give either rheology_from or {}, not both", key));
   if (!f.has("solids_fraction")) f.fail("rheology_from", "needs solids_fraction (which of the store's pastes)");
@@ -67,14 +80,31 @@ void read_rheology_from(const Params& f, const std::string& scene_path, FluidReg
   } catch (const InputError& e) {  // name the scene's key too: the fix may be in either file
     f.fail("rheology_from", e.what());
   }
-  r.fluid.density = s.density;
-  r.fluid.yield_stress = s.yield_stress;
-  r.fluid.plastic_viscosity = s.plastic_viscosity;
+  DragLaws::with(law, [&](auto l) {
+    using Law = typename decltype(l)::type;
+    if constexpr (requires { Law::from_store(1.0, 1.0, 1.0); })
+      r.law = Law::from_store(s.density, s.yield_stress, s.plastic_viscosity);
+  });
   if (!f.has("curve") && !f.has("curve_from")) f.fail("curve", fmt::format("name the drag curve (the store's eta_B belongs to {})", s.curve));
   r.curve = read_curve(f, scene_path, "");
   if (s.curve != r.curve.info().name)
     f.fail("curve", fmt::format("the store's eta_B ({}) belongs to drag curve {}, the scene uses {}", s.key,
                                 s.curve, r.curve.info().name));
+}
+
+// The region's drag law (rheology = NAME of DragLaws), its values from its own keys, and its curve.
+void read_drag_law(const Params& f, const std::string& scene_path, FluidRegion& r) {
+  const std::string law = f.choice("rheology", DragLaws::names());
+  if (f.has("rheology_at") && !f.has("rheology_from")) f.fail("rheology_at", "needs rheology_from");
+  if (f.has("rheology_from")) return read_rheology_from(f, scene_path, law, r);
+  DragLaws::with(law, [&](auto l) {
+    using Law = typename decltype(l)::type;
+    r.law = Law::from_params(f);
+    const std::string fallback = Law::default_curve;
+    if (fallback.empty() && !f.has("curve") && !f.has("curve_from"))
+      f.fail("curve", fmt::format("a {} fluid needs curve = NAME (with coefficients) or curve_from = FILE", law));
+    r.curve = read_curve(f, scene_path, fallback);
+  });
 }
 
 }  // namespace
@@ -184,22 +214,7 @@ std::vector<FluidRegion> read_fluid_regions(const Params& root, const std::strin
     if (r.z_surface0 > domain_max.z)
       f.fail("surface", fmt::format("surface = {:g} m is above the [domain] box (z from {:g} to {:g} m)", r.z_surface0,
                                     domain_min.z, domain_max.z));
-    r.rheology = f.choice("rheology", {"newtonian", "bingham"});
-    if (f.has("rheology_at") && !f.has("rheology_from")) f.fail("rheology_at", "needs rheology_from");
-    if (f.has("rheology_from")) {
-      read_rheology_from(f, scene_path, r);
-    } else if (r.rheology == "newtonian") {
-      r.fluid.density = f.number("density", Range::positive);
-      r.fluid.plastic_viscosity = f.number("viscosity", Range::positive);
-      r.curve = read_curve(f, scene_path, "stokes");
-    } else {
-      r.fluid.density = f.number("density", Range::positive);
-      r.fluid.yield_stress = f.number("yield_stress", Range::non_negative);
-      r.fluid.plastic_viscosity = f.number("plastic_viscosity", Range::positive);
-      if (!f.has("curve") && !f.has("curve_from"))
-        f.fail("curve", "a bingham fluid needs curve = NAME (with coefficients) or curve_from = FILE");
-      r.curve = read_curve(f, scene_path, "");
-    }
+    read_drag_law(f, scene_path, r);
     if (!f.has("rheology_from")) r.solids_fraction = f.number_or("solids_fraction", 0.0, Range::fraction);
     r.buoyancy = f.boolean_or("buoyancy", true);
     r.yield_term = f.boolean_or("yield_term", true);
@@ -207,8 +222,8 @@ std::vector<FluidRegion> read_fluid_regions(const Params& root, const std::strin
     r.surface_rise = f.boolean_or("surface_rise", true);
     r.collective = f.choice_or("collective", {"none", "bearing_capacity"}, "none") == "bearing_capacity";
     r.collective_interval = f.number_or("collective_interval", r.collective_interval, Range::positive);
-    if (r.collective && r.fluid.yield_stress <= 0.0)
-      f.fail("collective", "the bearing-capacity rule needs a yield stress (a bingham fluid with yield_stress > 0)");
+    if (r.collective && r.yield_stress() <= 0.0)
+      f.fail("collective", "the bearing-capacity rule needs a yield stress (a drag law with yield_stress > 0)");
     out.push_back(std::move(r));
   }
   return out;

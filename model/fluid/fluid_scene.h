@@ -8,9 +8,9 @@
 //   bottom = 0.0                         # m, bottom of the fluid
 //   surface = 0.15                       # m, free surface without rock (it rises as rock enters)
 //   density = 1843                       # kg/m3
-//   rheology = "bingham"                 # or "newtonian" (then: viscosity = 1e-3 Pa.s, curve = "stokes")
-//   yield_stress = 138                   # Pa
-//   plastic_viscosity = 0.7              # Pa.s
+//   rheology = "bingham"                 # the drag law, by name (laws/registry.h, DragLaws); its own keys
+//   yield_stress = 138                   # follow (laws/<law>.h, from_params), e.g. for "bingham": Pa
+//   plastic_viscosity = 0.7              # Pa.s ("newtonian": viscosity = 1e-3 Pa.s, curve default "stokes")
 //   curve = "power_blend"  coefficients = [k, a, b, c, n]    # or curve = "published_4_19" / "stokes", or
 //   curve_from = "parameters.toml"       # lab reduce output (relative to the scene file): drag_curve.chosen
 //   solids_fraction = 0.75               # -, optional (0), recorded for the analysis maps

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <string>
+#include <type_traits>
 #include <variant>
 #include <vector>
 
@@ -15,6 +16,8 @@ template <class... Laws>
 struct LawList {
   // Per-material-pair parameter tables (n_materials^2, row-major), one alternative per law.
   using Table = std::variant<std::vector<typename Laws::Params>...>;
+  // One law's parameters (a drag law: one per fluid region).
+  using One = std::variant<typename Laws::Params...>;
 
   // Scene names, in list order.
   static std::vector<std::string> names() { return {std::string(Laws::name)...}; }
@@ -25,6 +28,15 @@ struct LawList {
     ((name == Laws::name ? (t.template emplace<std::vector<typename Laws::Params>>(), true) : false) || ...);
     return t;
   }
+
+  // Calls f(std::type_identity<Law>{}) for the law named `name` (nothing if none is).
+  template <class F>
+  static void with(const std::string& name, F&& f) {
+    ((name == Laws::name ? (f(std::type_identity<Laws>{}), true) : false) || ...);
+  }
+
+  // Whether `name` is one of names().
+  static bool has(const std::string& name) { return ((name == Laws::name) || ...); }
 
   // The largest history (doubles per contact) of any law in the list.
   static constexpr int max_history() {

@@ -385,7 +385,7 @@ TEST_CASE("fluid switches: buoyancy, yield_term, partial_submergence and surface
   p.add(0, 0.005, 2700, {0, 0, 0.102}, {}, {});
   FluidRegion reg;
   reg.x_min = reg.y_min = -0.05, reg.x_max = reg.y_max = 0.05, reg.z_bottom = 0, reg.z_surface0 = 0.1;
-  reg.fluid = {1000, 0, 1e-3};
+  reg.law = NewtonianStokes::Params{1000, 1e-3};
   FluidField partial({reg});
   partial.update(p);
   CHECK(partial.inside(0));

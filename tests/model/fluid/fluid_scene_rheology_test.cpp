@@ -89,16 +89,16 @@ TEST_CASE("fluid scene: rheology_from takes the store's values at the scene's so
   Dir d;
   const Scene s = load_in(d, with(tiny_scene(), kFrom, "rheology_from = \"parameters.toml\""));
   REQUIRE(s.fluid.size() == 1);
-  CHECK(s.fluid[0].fluid.yield_stress == 45.99);
-  CHECK(s.fluid[0].fluid.plastic_viscosity == 0.202);
-  CHECK(s.fluid[0].fluid.density == 1789.4);
+  CHECK(s.fluid[0].yield_stress() == 45.99);
+  CHECK(std::get<BinghamDedegil::Params>(s.fluid[0].law).plastic_viscosity == 0.202);
+  CHECK(s.fluid[0].density() == 1789.4);
   CHECK(s.fluid[0].solids_fraction == 0.725);
   // The band: the same paste with the shape parameter at +1 sd (tau_y and eta_B together), one key of the scene.
   const std::string at = with(tiny_scene(), kFrom, "rheology_from = \"parameters.toml\"\nrheology_at = \"plus_sd\"");
   const Scene plus = load_in(d, at);
-  CHECK(plus.fluid[0].fluid.yield_stress == 37.0);
-  CHECK(plus.fluid[0].fluid.plastic_viscosity == 0.16);
-  CHECK(plus.fluid[0].fluid.density == 1789.4);
+  CHECK(plus.fluid[0].yield_stress() == 37.0);
+  CHECK(std::get<BinghamDedegil::Params>(plus.fluid[0].law).plastic_viscosity == 0.16);
+  CHECK(plus.fluid[0].density() == 1789.4);
   const auto r = fluid::read_store_rheology((d.path / "parameters.toml").string(), 0.725);
   CHECK(r.key == "paste_rheology.cw_72_5");
   CHECK(r.provenance.find("(prior)") != std::string::npos);
@@ -118,7 +118,7 @@ TEST_CASE("fluid scene: rheology_from errors name the scene, the key and what to
   has(error_of(d, with(base, "curve = \"published_4_19\"", "curve = \"stokes\"")), "belongs to drag curve published_4_19");
   has(error_of(d, with(base, "rheology = \"bingham\"", "rheology = \"bingham\"\nyield_stress = 69.0")),
       "give either rheology_from or yield_stress");
-  has(error_of(d, with(base, "rheology = \"bingham\"", "rheology = \"newtonian\"")), "Bingham");
+  has(error_of(d, with(base, "rheology = \"bingham\"", "rheology = \"newtonian\"")), "set rheology = \"bingham\"");
   has(error_of(d, with(base, "solids_fraction = 0.725", "solids_fraction = 0.725\nrheology_at = \"high\"")),
       "rheology_at");
   has(error_of(d, with(tiny_scene(), kFrom, "density = 1789.4\nyield_stress = 46.0\nplastic_viscosity = 0.2\n"

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "model/fluid/bingham_drag.h"
+#include "model/fluid/drag_kick.h"
 
 #include <cmath>
 #include <cstdio>
@@ -7,21 +7,29 @@
 #include <doctest/doctest.h>
 
 #include "model/fluid/buoyancy.h"
+#include "model/laws/bingham_dedegil.h"
 
+using namespace pastemix;
 using namespace pastemix::model::fluid;
+using pastemix::model::BinghamDedegil;
 
 namespace {
 constexpr double g = 9.81;
-auto stokes = [](double re) { return 24.0 / re; };
+using Fluid = BinghamDedegil::Params;  // density, tau_y (0: the Newtonian limit), eta_B
+const drag::DragCurve stokes{drag::CurveId::stokes, {}};
 // The published curve (thesis eq. 4.19), with its jump at Re' = 1.
-auto published = [](double re) { return re < 1.0 ? 24.0 / re : (re <= 150.0 ? 29.12 / re + 0.195 : 0.4); };
+const drag::DragCurve published{drag::CurveId::published_4_19, {}};
+
+// Dedegil's drag (the Bingham law, laws/bingham_dedegil.h) of fluid f with curve cd on a sphere of diameter d.
+double drag_magnitude(const Fluid& f, const drag::DragCurve& cd, double s, double d) {
+  return BinghamDedegil::magnitude(BinghamDedegil::sphere(f, cd, d, 0.0), s);
+}
 
 // One kick of the engine's kernel (drag_kick_implicit, as FluidField::kick calls it) with Dedegil's drag of
 // fluid f and curve cd for a sphere of diameter d: a lone sphere, so the held rest resistance is D(0+).
-template <class Cd>
-Vec kick(const BinghamFluid& f, const Cd& cd, double d, const Vec& v, const Vec& F, double m, double h) {
+Vec kick(const Fluid& f, const drag::DragCurve& cd, double d, const Vec& v, const Vec& F, double m, double h) {
   auto magnitude = [&](double s) { return drag_magnitude(f, cd, s, d); };
-  const double d0 = drag_at_rest(f, cd, d);
+  const double d0 = magnitude(kRestSpeed);
   return drag_kick_implicit(magnitude, d0, d0, v, F, m, h);
 }
 }  // namespace
@@ -29,7 +37,7 @@ Vec kick(const BinghamFluid& f, const Cd& cd, double d, const Vec& v, const Vec&
 TEST_CASE("fluid: 0.1 mm grain settling in water matches v_t (1 - exp(-t / tau)) within 0.5 % at any dt") {
   // Thesis Table 4.1: d = 0.1 mm, 2700 kg/m3, water 1000 kg/m3, 1 mPa.s.
   const double d = 1e-4, rho_p = 2700, r = d / 2;
-  const BinghamFluid water{1000.0, 0.0, 1e-3};
+  const Fluid water{1000.0, 0.0, 1e-3};
   const double m = rho_p * kPi * d * d * d / 6.0;
   const double weight = (rho_p - water.density) * g * kPi * d * d * d / 6.0;  // N, gravity minus buoyancy
   const double v_t = (rho_p - water.density) * g * d * d / (18.0 * water.plastic_viscosity);
@@ -56,9 +64,9 @@ TEST_CASE("fluid: 0.1 mm grain settling in water matches v_t (1 - exp(-t / tau))
 
 TEST_CASE("fluid: a sphere at rest below the yield threshold stays exactly at rest, just above, it sinks") {
   // Paste of the thesis (75 % solids): 1843 kg/m3, tau_y 136 Pa, eta_B 0.7 Pa.s; a steel ball 8135 kg/m3.
-  const BinghamFluid paste{1843.0, 136.0, 0.7};
+  const Fluid paste{1843.0, 136.0, 0.7};
   for (auto curve : {0, 1}) {
-    auto cd = [curve](double re) { return curve == 0 ? stokes(re) : published(re); };
+    const drag::DragCurve& cd = curve == 0 ? stokes : published;
     // The threshold of this drag model: D(0+) = weight, D(0+) = tau_y d^2 (pi^2/4 + 12 pi/4) with the
     // 24/Re' branch, so tau_y / (g d drho) = (pi/6) / (pi^2/4 + 3 pi) = 0.0440 (Beris et al.: 0.048).
     const double drho = 8135.0 - paste.density;
@@ -77,7 +85,7 @@ TEST_CASE("fluid: a sphere at rest below the yield threshold stays exactly at re
 }
 
 TEST_CASE("fluid: a moving sphere under a sub-threshold force stops and never reverses") {
-  const BinghamFluid paste{1843.0, 136.0, 0.7};
+  const Fluid paste{1843.0, 136.0, 0.7};
   const double d = 0.0126, m = 8135.0 * kPi * d * d * d / 6.0;
   const double w = (8135.0 - 1843.0) * g * kPi * d * d * d / 6.0;  // below D(0+) for 12.6 mm (see above)
   Vec v{0, 0, -1.5};  // impact speed of a 15 cm fall
@@ -92,8 +100,8 @@ TEST_CASE("fluid: a moving sphere under a sub-threshold force stops and never re
 }
 
 TEST_CASE("fluid: the terminal state satisfies D(v) = net weight") {
-  const BinghamFluid clay{1280.0, 30.5, 0.0131};  // Valentik & Whitmore suspension 1
-  auto cd = [](double re) { return 24.0 / re + 0.4 + 3.0 / std::sqrt(re); };  // a smooth monotone test curve
+  const Fluid clay{1280.0, 30.5, 0.0131};  // Valentik & Whitmore suspension 1
+  const drag::DragCurve cd{drag::CurveId::power_sum, {24.0, 3.0, 0.5, 0.4}};  // 24/Re' + 3/sqrt(Re') + 0.4
   const double d = 0.0254, rho_p = 7800.0, m = rho_p * kPi * d * d * d / 6.0;
   const double w = (rho_p - clay.density) * g * kPi * d * d * d / 6.0;
   Vec v{0, 0, 0};
@@ -108,4 +116,28 @@ TEST_CASE("fluid: submerged volume of a sphere below a free surface") {
   CHECK(submerged_volume(0.0, r, 0.0) == doctest::Approx(0.5 * full).epsilon(1e-14));
   const double h = 0.3 * r;  // a cap of depth h
   CHECK(submerged_volume(r - h, r, 0.0) == doctest::Approx(kPi * h * h * (3 * r - h) / 3).epsilon(1e-14));
+}
+
+TEST_CASE("fluid: the kick's rest shortcut returns what the iterations return, on both sides of the threshold") {
+  // drag_kick_implicit returns v = 0 at once for a sphere at rest whose |F| is below its held resistance
+  // (minus 1e-12). The iterated kernel (drag_kick with the slope at 1e-9 m/s, as the iterations take it at
+  // rest) must give v = 0 there too, and just above the threshold neither may stop the sphere.
+  const Fluid paste{1843.0, 136.0, 0.7};
+  const double d = 0.005, m = 2760.0 * kPi * d * d * d / 6.0, h = 5e-6;
+  auto magnitude = [&](double s) { return drag_magnitude(paste, published, s, d); };
+  const double d0 = magnitude(kRestSpeed);
+  const DragSplit at_rest{d0, std::max(0.0, (magnitude(1e-9) - d0) / 1e-9)};
+  for (double dir : {0.0, 0.3, 1.2}) {
+    for (double rel : {0.5, 1.0 - 1e-9, 1.0 - 2e-12}) {
+      const double f = d0 * rel;
+      const Vec F{f * std::sin(dir), 0.0, -f * std::cos(dir)};
+      const Vec fast = drag_kick_implicit(magnitude, d0, d0, Vec{0, 0, 0}, F, m, h);
+      const Vec slow = drag_kick(Vec{0, 0, 0}, F, m, h, at_rest);
+      for (int c = 0; c < 3; ++c) CHECK(fast[c] == slow[c]);
+      CHECK(fast[2] == 0.0);
+    }
+    const double f = d0 * (1.0 + 1e-9);
+    const Vec F{f * std::sin(dir), 0.0, -f * std::cos(dir)};
+    CHECK(drag_kick_implicit(magnitude, d0, d0, Vec{0, 0, 0}, F, m, h)[2] < 0.0);
+  }
 }

@@ -1,0 +1,52 @@
+// SPDX-License-Identifier: MIT
+// Dedegil's drag on a sphere in a Bingham fluid at rest (Dedegil 1987; thesis eq. 4.9), opposing the motion:
+//   D(s) = (pi d / 2)^2 tau_y + 1/2 Cd(Re') rho_f s^2 (pi d^2 / 4),   Re' = rho_f s^2 / (tau_y + eta_B s / d)
+// with s the particle speed and Cd(Re') the region's curve (base/drag_curves.h; the lab fits it).
+// Keys of its [[fluid]] table: density (kg/m3), yield_stress (Pa, >= 0), plastic_viscosity (Pa.s, > 0) and a
+// named curve; or rheology_from = a lab store (its paste rheology is this law's tau_y and eta_B).
+#pragma once
+
+#include "base/drag_curves.h"
+#include "base/params.h"
+
+namespace pastemix::model {
+
+struct BinghamDedegil {
+  static constexpr const char* name = "bingham";
+  static constexpr const char* default_curve = "";  // the curve belongs to the paste: the scene names it
+  struct Params {
+    using Law = BinghamDedegil;
+    double density = 0.0;            // kg/m3
+    double yield_stress = 0.0;       // Pa
+    double plastic_viscosity = 0.0;  // Pa.s
+  };
+  static Params from_params(const pastemix::Params& f) {
+    return {f.number("density", Range::positive), f.number("yield_stress", Range::non_negative),
+            f.number("plastic_viscosity", Range::positive)};
+  }
+  static Params from_store(double density, double yield_stress, double plastic_viscosity) {
+    return {density, yield_stress, plastic_viscosity};
+  }
+
+  struct Sphere {
+    Params fluid;
+    const drag::DragCurve* curve = nullptr;
+    double d = 0.0, y = 0.0;  // m, yield number
+  };
+  static Sphere sphere(const Params& p, const drag::DragCurve& c, double d, double y) { return {p, &c, d, y}; }
+
+  static double yield_term(const Sphere& s) {
+    return 0.25 * 3.14159265358979323846 * 3.14159265358979323846 * s.d * s.d * s.fluid.yield_stress;
+  }
+  // N; s in m/s.
+  static double magnitude(const Sphere& s, double speed) {
+    const double d = s.d;
+    const double area = 0.25 * 3.14159265358979323846 * d * d;  // m^2, projected area
+    const double yield = yield_term(s);
+    if (speed <= 0.0) return yield;
+    const double re = drag::bingham_reynolds(s.fluid.density, speed, s.fluid.yield_stress, s.fluid.plastic_viscosity, d);
+    return yield + 0.5 * s.curve->cd(re, s.y) * s.fluid.density * speed * speed * area;
+  }
+};
+
+}  // namespace pastemix::model

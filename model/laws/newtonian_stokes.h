@@ -1,0 +1,44 @@
+// SPDX-License-Identifier: MIT
+// Drag on a sphere in a Newtonian fluid at rest: D(s) = 1/2 Cd(Re) rho_f s^2 (pi d^2 / 4), Re = rho_f s d / eta
+// (Re' of thesis eq. 4.14 with tau_y = 0). With the default curve Cd = 24/Re this is Stokes's law,
+// D = 3 pi eta d s, linear in s (the settling-in-water validation is exact at any time step).
+// Keys of its [[fluid]] table: density (kg/m3), viscosity (Pa.s, > 0); curve optional (default stokes).
+#pragma once
+
+#include "base/drag_curves.h"
+#include "base/params.h"
+
+namespace pastemix::model {
+
+struct NewtonianStokes {
+  static constexpr const char* name = "newtonian";
+  static constexpr const char* default_curve = "stokes";
+  struct Params {
+    using Law = NewtonianStokes;
+    double density = 0.0;    // kg/m3
+    double viscosity = 0.0;  // Pa.s
+    static constexpr double yield_stress = 0.0;  // Pa: none
+  };
+  static Params from_params(const pastemix::Params& f) {
+    return {f.number("density", Range::positive), f.number("viscosity", Range::positive)};
+  }
+
+  struct Sphere {
+    Params fluid;
+    const drag::DragCurve* curve = nullptr;
+    double d = 0.0;  // m
+  };
+  static Sphere sphere(const Params& p, const drag::DragCurve& c, double d, double /*y*/) { return {p, &c, d}; }
+
+  static double yield_term(const Sphere&) { return 0.0; }
+  // N; s in m/s. Re as the Bingham form with tau_y = 0 (0 + x is exact: the same bits as that form).
+  static double magnitude(const Sphere& s, double speed) {
+    if (speed <= 0.0) return 0.0;
+    const double d = s.d;
+    const double area = 0.25 * 3.14159265358979323846 * d * d;  // m^2
+    const double re = drag::bingham_reynolds(s.fluid.density, speed, 0.0, s.fluid.viscosity, d);
+    return 0.5 * s.curve->cd(re, 0.0) * s.fluid.density * speed * speed * area;
+  }
+};
+
+}  // namespace pastemix::model
