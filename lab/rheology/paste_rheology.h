@@ -4,7 +4,7 @@
 //
 // Only the 75 % paste was measured: tau_y by slump (paste.yield_stress), the density with the slump tests
 // (paste.density, 1843 kg/m3), and eta_B by the thesis's steel-ball calibration (0.7 Pa.s, Table 4.4), which
-// belongs to the drag curve it was calibrated with (published_4_19, model/fluid/VALIDATION.md section 4).
+// belongs to the drag curve it was calibrated with (published_4_19, validation/fluid/VALIDATION.md section 4).
 // Every family below returns exactly those values at the anchor and has ONE free shape parameter.
 //
 // Solids volume fraction (of the solids + water, air excluded), from the solids content by mass C_w:
