@@ -287,7 +287,7 @@ void run_repose(const ReposeOpts& opts) {
     const auto radius = h5.read_doubles(g + "/radius");
     if (pos.size() != 3 * radius.size())
       throw InputError(file, 0, "dataset '" + g + "/position'", "expected N x 3 with N = the radius count");
-    std::vector<std::array<double, 3>> x(radius.size());
+    std::vector<Vec3> x(radius.size());
     for (std::size_t a = 0; a < x.size(); ++a) x[a] = {pos[3 * a], pos[3 * a + 1], pos[3 * a + 2]};
     const auto r = analysis::measure_repose_angle(x, radius, o);
     const std::int64_t seed = h5.has_attribute("/", "seed") ? h5.attribute_int("/", "seed") : -1;

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Fluid validations and calibration through the engine (model/fluid/validations.h):
+// Fluid validations and calibration through the engine (validation/fluid/validations.h):
 //   pastemix validate water [--dt 1e-7,1e-6,...]                 settling in water: error vs time step
 //   pastemix validate settling DATASET --curve NAME [--params parameters.toml] [--rows N] [--dt S]
 //                                                                 121 Valentik & Whitmore spheres, DEM vs lab
@@ -21,13 +21,15 @@
 #include "lab/drag/settling.h"
 #include "lab/drag/terminal_velocity.h"
 #include "model/fluid/fluid_scene.h"
-#include "model/fluid/validations.h"
+#include "validation/fluid/validations.h"
+#include "base/units.h"
 
 namespace pastemix::app {
 
 namespace {
 
 using namespace pastemix::model::fluid;
+using namespace pastemix::validation;
 
 drag::DragCurve curve_option(const std::string& name, const std::string& params) {
   auto id = drag::find_curve(name);
@@ -137,7 +139,7 @@ void register_validate(CLI::App& app) {
     const Paste paste = resolve_paste(bo->paste);
     SteelBallPaste p = steel_ball_paste(paste);
     p.dt = bo->dt, p.mould_wall = !bo->no_wall, p.offset = 1e-3 * bo->offset;
-    if (!(p.offset >= 0.0 && p.offset + 0.008 < 0.5 * std::sqrt(M_PI / 4.0) * p.mould_diameter))
+    if (!(p.offset >= 0.0 && p.offset + 0.008 < 0.5 * std::sqrt(pastemix::units::pi / 4.0) * p.mould_diameter))
       throw InputError("--offset", 0, "offset", "must leave the 16 mm ball inside the mould's fluid box (mm)");
     print_paste(paste);
     fmt::print("steel balls ({} kg/m3), mould {} x {} mm{}, release {} mm off the axis, dt {} s\nsettling distance = "

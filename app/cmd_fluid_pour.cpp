@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // `pastemix validate ball-pour`: the thesis's multi-ball test (68 balls of 12.6 mm poured from the funnel,
-// 15 cm fall into the paste; model/fluid/ball_pour.h), over seeded runs: per-seed Z range, balls suspended,
+// 15 cm fall into the paste; validation/fluid/ball_pour.h), over seeded runs: per-seed Z range, balls suspended,
 // balls left in the funnel, and the presence-probability maps (PNG, scripts/plot_ball_pour.py).
 #include <sys/wait.h>
 
@@ -18,7 +18,7 @@
 #include "app/fluid_paste.h"
 #include "base/error.h"
 #include "base/staged_output.h"
-#include "model/fluid/ball_pour.h"
+#include "validation/fluid/ball_pour.h"
 
 namespace pastemix::app {
 
@@ -56,7 +56,7 @@ void register_pour(CLI::App* val) {
   struct Opts {
     int seeds = 15;
     std::string out = "out/fluid/ball_pour";
-    model::fluid::FunnelPour pour;
+    validation::FunnelPour pour;
     PasteOpts paste;
   };
   auto o = std::make_shared<Opts>();
@@ -75,11 +75,11 @@ void register_pour(CLI::App* val) {
     if (o->seeds < 1) throw InputError("--seeds", 0, "seeds", "must be at least 1");
     if (!(o->pour.dt_rayleigh > 0.0)) throw InputError("--dt-rayleigh", 0, "dt-rayleigh", "must be positive");
     const Paste paste = resolve_paste(o->paste);
-    model::fluid::FunnelPour p = o->pour;
+    validation::FunnelPour p = o->pour;
     p.tau_y = paste.tau_y, p.rho_paste = paste.rho, p.eta_B = paste.eta, p.curve = paste.curve;
     p.restitution = paste.ball_restitution, p.friction = paste.ball_friction;
     print_paste(paste);
-    const double tr = model::fluid::rayleigh_time(p);
+    const double tr = validation::rayleigh_time(p);
     fmt::print("{} balls of {} mm ({} kg/m3) in the funnel ({} cm top, {} cm exit, {} cm cone + {} cm tube) on a plate "
                "removed at {} s; fall {} cm to the paste (frame {} x {} cm, paste {} cm); steel e {:.4g}, mu {:.4g} "
                "({}); dt {:.3g} s = {} x Rayleigh time {:.3g} s\nlab: all balls suspended, Z = 8.5-13.5 cm (Z: ball "
@@ -100,7 +100,7 @@ void register_pour(CLI::App* val) {
     for (int k = 1; k <= o->seeds; ++k) {
       const auto t1 = std::chrono::steady_clock::now();
       const std::clock_t c1 = std::clock();
-      const auto b = model::fluid::ball_pour(p, static_cast<std::uint64_t>(k));
+      const auto b = validation::ball_pour(p, static_cast<std::uint64_t>(k));
       const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
       const double cpu = static_cast<double>(std::clock() - c1) / CLOCKS_PER_SEC;
       const double top = p.paste_depth + p.fall;

@@ -12,6 +12,7 @@
 #include "app/commands.h"
 #include "base/csv.h"
 #include "base/error.h"
+#include "base/units.h"
 #include "base/params.h"
 #include "base/psd.h"
 #include "lab/ingest/block_cut.h"
@@ -170,7 +171,7 @@ void check_generate_size(const Psd& psd, double mass_kg, double density) {
   double expected = 0.0;
   for (const auto& iv : psd.intervals) {
     const double d = 0.5 * (iv.d_min + iv.d_max);
-    expected += iv.mass_fraction * mass_kg / (3.14159265358979323846 / 6.0 * density * d * d * d);
+    expected += iv.mass_fraction * mass_kg / (units::pi / 6.0 * density * d * d * d);
   }
   if (!(expected <= max_particles))
     throw InputError("--generate", 0, "",
@@ -215,7 +216,7 @@ void add_sieve(CLI::App& lab) {
       std::vector<double> mass(r.psd.intervals.size(), 0.0);
       double total = 0.0;
       for (double x : d) {
-        const double m = 3.14159265358979323846 / 6.0 * o->density * x * x * x;
+        const double m = units::pi / 6.0 * o->density * x * x * x;
         total += m;
         for (std::size_t k = 0; k < mass.size(); ++k)
           if (x >= r.psd.intervals[k].d_min && x <= r.psd.intervals[k].d_max) {

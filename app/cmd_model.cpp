@@ -14,34 +14,24 @@
 #include <string>
 #include <vector>
 
-#include <toml++/toml.h>
-
 #include <fmt/format.h>
 
 #include "app/commands.h"
 #include "base/error.h"
 #include "model/run.h"
 #include "model/scene.h"
-#include "model/scene_override.h"
+#include "model/scene_doc.h"
 
 namespace pastemix::app {
 
 namespace {
 
 void run_one(const model::Scene& scene, const std::string& out_dir, bool quiet, const std::string& stem) {
-  // The time step against the Rayleigh time of the smallest sphere (DESIGN.md section 3): informative,
-  // the right step is found by a convergence study, not by habit.
-  {
-    double tr = 1e300;
-    const auto& p = scene.particles;
-    for (std::size_t a = 0; a < p.size(); ++a) {
-      const auto& m = scene.materials[static_cast<std::size_t>(p.material[a])];
-      tr = std::min(tr, M_PI * p.radius[a] * std::sqrt(m.density / m.shear_modulus()) /
-                            (0.8766 + 0.163 * m.poisson_ratio));
-    }
-    fmt::print(stderr, "time step {:.3g} s = {:.1f} % of the Rayleigh time of the smallest sphere ({:.3g} s)\n",
-               scene.config.dt, 100.0 * scene.config.dt / tr, tr);
-  }
+  // The time step against the Rayleigh time of the smallest sphere (../shared/DESIGN.md section 3):
+  // informative, the right step is found by a convergence study, not by habit.
+  const double tr = model::smallest_rayleigh_time(scene);
+  fmt::print(stderr, "time step {:.3g} s = {:.1f} % of the Rayleigh time of the smallest sphere ({:.3g} s)\n",
+             scene.config.dt, 100.0 * scene.config.dt / tr, tr);
   for (const auto& w : scene.warnings) fmt::print(stderr, "warning: {}\n", w);
   model::RunOptions ro;
   ro.progress = !quiet;
@@ -56,22 +46,12 @@ void run_one(const model::Scene& scene, const std::string& out_dir, bool quiet, 
 }
 
 // A factory with its own `seed` would place the same rock in every realization.
-void reject_factory_seeds(const std::string& path) {
-  toml::table root;
-  try {
-    root = toml::parse_file(path);
-  } catch (const toml::parse_error& e) {
-    throw InputError(path, static_cast<int>(e.source().begin.line), "", std::string(e.description()));
-  }
-  if (const toml::array* fs = root["factory"].as_array()) {
-    for (const auto& f : *fs) {
-      const toml::table* t = f.as_table();
-      if (t && t->contains("seed"))
-        throw InputError(path, static_cast<int>(t->get("seed")->source().begin.line), "factory.seed",
-                         "--realizations sets the scene seed; a factory with its own seed would not change "
-                         "between realizations (remove it)");
-    }
-  }
+void reject_factory_seeds(const model::SceneDoc& doc) {
+  for (std::size_t k = 0; k < doc.size("factory"); ++k)
+    if (const std::string key = fmt::format("factory.{}.seed", k); doc.has(key))
+      throw InputError(doc.path(), doc.line_of(key), "factory.seed",
+                       "--realizations sets the scene seed; a factory with its own seed would not change "
+                       "between realizations (remove it)");
 }
 
 }  // namespace
@@ -104,22 +84,20 @@ void register_model_commands(CLI::App& app) {
     if (run->count("--threads") && opts->threads < 1)
       throw InputError("--threads", 0, "", fmt::format("expected a thread count >= 1, got {}", opts->threads));
     if (opts->threads > 0) omp_set_num_threads(opts->threads);
-    std::vector<std::string> sets;
-    if (!opts->overrides.empty()) sets = model::read_override_file(opts->overrides);
-    sets.insert(sets.end(), opts->sets.begin(), opts->sets.end());
+    model::SceneDoc doc = model::scene_with_overrides(opts->scene, opts->overrides, opts->sets);
     if (opts->realizations == 0) {
-      if (opts->seed >= 0) sets.push_back(fmt::format("seed={}", opts->seed));
-      run_one(model::load_scene(opts->scene, sets), opts->out, opts->quiet, "");
+      if (opts->seed >= 0) doc.apply(fmt::format("seed={}", opts->seed));
+      run_one(doc.load(), opts->out, opts->quiet, "");
       return;
     }
-    reject_factory_seeds(opts->scene);
-    const long first = opts->seed >= 0 ? opts->seed : static_cast<long>(model::load_scene(opts->scene, sets).seed);
+    reject_factory_seeds(doc);
+    const long first = opts->seed >= 0 ? opts->seed : static_cast<long>(doc.load().seed);
     // All realizations are set up (and checked) before anything is written.
     std::vector<model::Scene> scenes;
     for (int k = 0; k < opts->realizations; ++k) {
-      std::vector<std::string> sk = sets;
-      sk.push_back(fmt::format("seed={}", first + k));
-      scenes.push_back(model::load_scene(opts->scene, sk));
+      model::SceneDoc dk = doc;
+      dk.apply(fmt::format("seed={}", first + k));
+      scenes.push_back(dk.load());
     }
     const std::string stem = std::filesystem::path(opts->scene).stem().string();
     for (int k = 0; k < opts->realizations; ++k) {

@@ -23,15 +23,6 @@
 namespace pastemix::app {
 namespace {
 
-// The scene with the override file (if any) and then each --set applied, as `pastemix run` orders them.
-model::SceneDoc scene_doc(const std::string& scene, const std::string& overrides, const std::vector<std::string>& sets) {
-  model::SceneDoc d = model::SceneDoc::parse_file(scene);
-  if (!overrides.empty())
-    for (const auto& a : model::read_override_file(overrides)) d.apply(a);
-  for (const auto& a : sets) d.apply(a);
-  return d;
-}
-
 // Rewrites the parameter store (parameters.toml, lab.h5 beside it) with the calibration record: `lab reduce`
 // of the store's own dataset with --rheology-calibration, so the store is never edited by hand.
 void write_store(const std::string& store, std::string dataset, const std::string& record) {
@@ -92,7 +83,7 @@ void register_rheology(CLI::App* cal) {
     if (!c->target.empty()) o.target_layers = std::array<double, 3>{c->target[0], c->target[1], c->target[2]};
     if (!(c->layer_thickness > 0.0)) throw InputError("--layer-thickness", 0, "", "must be positive (m)");
     o.layout.layer_thickness = c->layer_thickness;
-    const model::SceneDoc base = scene_doc(scene, c->overrides, c->sets);
+    const model::SceneDoc base = model::scene_with_overrides(scene, c->overrides, c->sets);
     const auto res = study::calibrate_rheology(base, o);
     std::string command = fmt::format("pastemix calibrate rheology --case {} --family {} --seeds {} --scene {} --out {}",
                                       o.case_id, lab::rheology::to_string(res.model.family), o.seeds, scene,
@@ -137,7 +128,7 @@ void register_study_commands(CLI::App& app) {
   s->add_option("--save", opts->o.save, "folder for each run's final state (<vary>_<value>_seed<S>.h5 + .xmf)");
   s->add_option("--jobs", opts->o.jobs, "runs at once, one thread each (default 1: one run with the OpenMP threads)");
   s->callback([opts] {
-    const model::SceneDoc base = scene_doc(opts->scene, opts->overrides, opts->sets);
+    const model::SceneDoc base = model::scene_with_overrides(opts->scene, opts->overrides, opts->sets);
     const study::SweepResult r = study::sweep(base, opts->o);
     fmt::print("{}", r.table);
     study::write_outputs(r, opts->o);
@@ -167,7 +158,7 @@ void register_study_commands(CLI::App& app) {
   rr->add_option("--overrides", c->overrides, "file of key.path = value lines, applied before --set");
   rr->add_option("--set", c->sets, "scene override key.path=value");
   rr->callback([c] {
-    const model::SceneDoc base = scene_doc(c->scene, c->overrides, c->sets);
+    const model::SceneDoc base = model::scene_with_overrides(c->scene, c->overrides, c->sets);
     const long seed0 = base.has("seed") ? std::stol(base.get("seed")) : 1;
     auto f = [&](double mu) {
       std::vector<double> angles;

@@ -81,8 +81,8 @@ void print_paste(const Paste& p) {
   fmt::print("\n");
 }
 
-model::fluid::SteelBallPaste steel_ball_paste(const Paste& p) {
-  model::fluid::SteelBallPaste s;
+validation::SteelBallPaste steel_ball_paste(const Paste& p) {
+  validation::SteelBallPaste s;
   s.tau_y = p.tau_y, s.rho_paste = p.rho, s.curve = p.curve;
   return s;
 }

@@ -10,7 +10,7 @@
 #include <CLI/CLI.hpp>
 
 #include "base/drag_curves.h"
-#include "model/fluid/validations.h"
+#include "validation/fluid/validations.h"
 
 namespace pastemix::app {
 
@@ -37,7 +37,7 @@ void add_paste_options(CLI::App* cmd, PasteOpts& o, bool with_eta = true);
 // Throws InputError (exit 2) naming the path when the store is missing and a value is not given explicitly.
 Paste resolve_paste(const PasteOpts& o, bool need_eta = true);
 void print_paste(const Paste& p);
-model::fluid::SteelBallPaste steel_ball_paste(const Paste& p);
+validation::SteelBallPaste steel_ball_paste(const Paste& p);
 
 // `pastemix validate ball-pour` (app/cmd_fluid_pour.cpp), registered on `validate`.
 void register_pour(CLI::App* validate);

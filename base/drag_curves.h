@@ -40,6 +40,8 @@
 #include <string_view>
 #include <vector>
 
+#include "base/units.h"
+
 namespace pastemix::drag {
 
 inline constexpr int kMaxCoefficients = 6;
@@ -151,7 +153,6 @@ struct BinghamSphere {
   double eta_B = 0.0;  // Pa.s
 };
 
-inline constexpr double kPi = 3.14159265358979323846;
 
 // Yield number Y = tau_y / (g d (rho_p - rho_f)) (dimensionless; g in m/s2). The yield term of (4.9) is
 // 3 pi Y / 2 times the net weight, so a sphere with Y >= 2/(3 pi) ~ 0.212 stays suspended.
@@ -159,21 +160,21 @@ inline double yield_number(const BinghamSphere& s, double g) { return s.tau_y / 
 
 // Net weight (weight minus buoyancy), N.
 inline double net_weight(const BinghamSphere& s, double g) {
-  return (s.rho_p - s.rho_f) * g * kPi * s.d * s.d * s.d / 6.0;
+  return (s.rho_p - s.rho_f) * g * units::pi * s.d * s.d * s.d / 6.0;
 }
 
 // Dedegil's drag (4.9) at speed v > 0, N; y = yield_number(s, g).
 template <typename T>
 T dedegil_drag(CurveId id, const T* c, const BinghamSphere& s, const T& v, double y) {
   const T re = bingham_reynolds(s.rho_f, v, s.tau_y, s.eta_B, s.d);
-  const double area = kPi * s.d * s.d / 4.0;
-  const double yield = (kPi * s.d / 2.0) * (kPi * s.d / 2.0) * s.tau_y;
+  const double area = units::pi * s.d * s.d / 4.0;
+  const double yield = (units::pi * s.d / 2.0) * (units::pi * s.d / 2.0) * s.tau_y;
   return yield + 0.5 * drag_coefficient(id, c, re, y) * s.rho_f * v * v * area;
 }
 
 // Settling drag coefficient (4.17) from a measured terminal velocity: the Cd that balances net weight.
 inline double settling_drag_coefficient(const BinghamSphere& s, double v, double g) {
-  return 2.0 / (v * v * s.rho_f) * (2.0 / 3.0 * (s.rho_p - s.rho_f) * s.d * g - kPi * s.tau_y);
+  return 2.0 / (v * v * s.rho_f) * (2.0 / 3.0 * (s.rho_p - s.rho_f) * s.d * g - units::pi * s.tau_y);
 }
 
 // A curve with its coefficients, for callers that work in doubles.

@@ -16,7 +16,8 @@
 namespace pastemix {
 
 struct Params::State {
-  std::shared_ptr<toml::table> root;  // keeps the parsed document alive
+  std::shared_ptr<const toml::table> root;  // keeps the parsed document alive
+  std::shared_ptr<const Notes> notes;       // may be null
   const toml::table* table = nullptr;
   std::string path;
   int line = 0;
@@ -47,6 +48,17 @@ Params Params::parse(std::string_view text, std::string display_path) {
   return Params(std::move(state));
 }
 
+Params Params::from_table(std::shared_ptr<const toml::table> root, std::string display_path,
+                          std::shared_ptr<const Notes> notes) {
+  auto state = std::make_shared<State>();
+  state->path = std::move(display_path);
+  state->root = std::move(root);
+  state->notes = std::move(notes);
+  state->table = state->root.get();
+  state->line = 1;
+  return Params(std::move(state));
+}
+
 Params Params::parse_file(const std::filesystem::path& path) {
   if (std::filesystem::is_directory(path)) throw InputError(path.string(), 0, "", "is a folder, not a TOML file");
   std::ifstream in(path, std::ios::binary);
@@ -64,9 +76,24 @@ int Params::line_of(std::string_view key) const {
   return n ? static_cast<int>(n->source().begin.line) : 0;
 }
 
+// The file a node was read from: its own source (an edit may have brought it from an overrides file), or
+// this table's.
+static const std::string& file_of(const toml::node& n, const std::string& fallback) {
+  return n.source().path && !n.source().path->empty() ? *n.source().path : fallback;
+}
+
+static std::string field_of(std::string_view key, const toml::node* n, const Params::Notes* notes) {
+  std::string field = fmt::format("key '{}'", key);
+  if (n && notes)
+    if (auto it = notes->find(n); it != notes->end()) field += " " + it->second;
+  return field;
+}
+
 void Params::fail(std::string_view key, const std::string& message) const {
-  int line = line_of(key);
-  throw InputError(state_->path, line ? line : state_->line, fmt::format("key '{}'", key), message);
+  const toml::node* n = state_->table->get(key);
+  const int line = n ? static_cast<int>(n->source().begin.line) : 0;
+  throw InputError(line && n ? file_of(*n, state_->path) : state_->path, line ? line : state_->line,
+                   field_of(key, n, state_->notes.get()), message);
 }
 
 bool Params::has(std::string_view key) const {
@@ -187,18 +214,24 @@ std::vector<double> Params::numbers(std::string_view key, std::size_t expected_s
   return *v;
 }
 
+std::shared_ptr<Params::State> Params::child_state(const toml::table* t) const {
+  auto child = std::make_shared<State>();
+  child->root = state_->root;
+  child->notes = state_->notes;
+  child->table = t;
+  const int line = static_cast<int>(t->source().begin.line);
+  child->line = line ? line : state_->line;  // a table an edit added without a source: its parent's line
+  child->path = line ? file_of(*t, state_->path) : state_->path;
+  state_->children.push_back(child);
+  return child;
+}
+
 std::optional<Params> Params::optional_table(std::string_view key) const {
   const toml::node* n = get(key);
   if (!n) return std::nullopt;
   auto t = n->as_table();
   if (!t) fail(key, "expected a table");
-  auto child = std::make_shared<State>();
-  child->root = state_->root;
-  child->table = t;
-  child->path = state_->path;
-  child->line = static_cast<int>(t->source().begin.line);
-  state_->children.push_back(child);
-  return Params(child);
+  return Params(child_state(t));
 }
 
 Params Params::table(std::string_view key) const {
@@ -216,13 +249,7 @@ std::vector<Params> Params::tables(std::string_view key) const {
   for (auto&& el : *arr) {
     auto t = el.as_table();
     if (!t) fail(key, "expected an array of tables");
-    auto child = std::make_shared<State>();
-    child->root = state_->root;
-    child->table = t;
-    child->path = state_->path;
-    child->line = static_cast<int>(t->source().begin.line);
-    state_->children.push_back(child);
-    out.push_back(Params(child));
+    out.push_back(Params(child_state(t)));
   }
   return out;
 }
@@ -233,7 +260,8 @@ void Params::finish() const {
   for (auto&& [k, v] : *state_->table) {
     if (!state_->used.count(k.str())) {
       const std::vector<std::string> known(state_->asked.begin(), state_->asked.end());
-      throw InputError(state_->path, static_cast<int>(v.source().begin.line), fmt::format("key '{}'", shown(k.str())),
+      throw InputError(file_of(v, state_->path), static_cast<int>(v.source().begin.line),
+                       field_of(shown(k.str()), &v, state_->notes.get()),
                        fmt::format("unknown key{} (nothing reads it; check the spelling and the table it is in)",
                                    did_you_mean(k.str(), known)));
     }

@@ -13,6 +13,7 @@
 #pragma once
 
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -34,6 +35,13 @@ class Params {
  public:
   static Params parse_file(const std::filesystem::path& path);
   static Params parse(std::string_view text, std::string display_path);
+  // A note shown after a key in error messages (e.g. "(--set time_step=1e-6)": where the value came from).
+  using Notes = std::map<const toml::node*, std::string>;
+  // A document parsed (and possibly edited) elsewhere, read in place (model/scene_doc.h). Errors name each
+  // value's own source (file and line), which an edit may have set to an overrides file; `display_path` is
+  // for keys without one.
+  static Params from_table(std::shared_ptr<const toml::table> root, std::string display_path,
+                           std::shared_ptr<const Notes> notes = {});
 
   Params(const Params&);
   Params& operator=(const Params&);
@@ -81,6 +89,7 @@ class Params {
  private:
   struct State;
   explicit Params(std::shared_ptr<State> state);
+  std::shared_ptr<State> child_state(const toml::table* t) const;
   const toml::node* get(std::string_view key) const;
   std::shared_ptr<State> state_;
 };

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// libFuzzer target: the scene loader (model/scene.h) with --set paths (model/scene_override.h).
+// libFuzzer target: the scene loader (model/scene.h) with --set paths (model/scene_doc.h).
 //
 // Input: a scene's TOML text, optionally followed by a line "%%" and `key.path=value` lines, applied in
 // order as `pastemix run --set` would.
@@ -8,7 +8,7 @@
 
 #include "fuzz/fuzz_common.h"
 #include "model/scene.h"
-#include "model/scene_override.h"
+#include "model/scene_doc.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace pastemix;

@@ -34,7 +34,7 @@ struct Particles {
   std::vector<Vec3> torque;        // N.m
   std::vector<double> inv_inertia; // 1/(kg.m2), solid sphere I = 2/5 m r^2
   // Sum over contacts of the constant-directional rolling torque magnitudes (N.m), applied by the
-  // integrator as an implicit, non-reversing friction on omega (see integrate.h).
+  // integrator as an implicit, non-reversing friction on omega (the half kicks in world.cpp; laws/rolling.h).
   std::vector<double> rolling_capacity;
 
   std::size_t size() const { return x.size(); }

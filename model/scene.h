@@ -105,8 +105,13 @@ struct Scene {
   std::vector<std::string> warnings;      // legal but doubtful settings (a time step near the Rayleigh time)
 };
 
+// The loaders (scene/read.cpp): one reader per concept of the format (scene/read.h); editing a scene before
+// it is read (--set, --overrides, the studies) goes through SceneDoc (scene_doc.h).
 Scene load_scene(const std::filesystem::path& path);
 Scene parse_scene(std::string_view text, const std::string& display_path);
 World make_world(const Scene& scene);
+// s: the smallest Rayleigh time of the scene's spheres, pi r sqrt(rho/G) / (0.8766 + 0.163 nu)
+// (../shared/DESIGN.md section 3); inf without spheres.
+double smallest_rayleigh_time(const Scene& scene);
 
 }  // namespace pastemix::model

@@ -4,12 +4,12 @@
 #include <algorithm>
 #include <cmath>
 #include <vector>
+#include "base/units.h"
 
 namespace pastemix::analysis {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 // Antiderivative of sqrt(r^2 - x^2) on [-r, r].
 double sqrt_antiderivative(double r, double x) {
@@ -53,9 +53,9 @@ double tanh_sinh(F&& f, double a, double b) {
   double sum = 0.0;
   for (int k = -56; k <= 56; ++k) {
     const double t = k * h;
-    const double u = 0.5 * kPi * std::sinh(t);
+    const double u = 0.5 * units::pi * std::sinh(t);
     const double ch = std::cosh(u);
-    const double w = 0.5 * kPi * std::cosh(t) / (ch * ch);
+    const double w = 0.5 * units::pi * std::cosh(t) / (ch * ch);
     sum += w * f(mid + half * std::tanh(u));
   }
   return sum * h * half;
@@ -70,14 +70,14 @@ double disc_rectangle_area(double r, double x0, double x1, double y0, double y1)
   return std::max(0.0, area);
 }
 
-double sphere_box_volume(const std::array<double, 3>& c, double r, const Box3& box) {
+double sphere_box_volume(const Vec3& c, double r, const Box3& box) {
   // Box relative to the sphere centre.
-  const double x0 = box.lo[0] - c[0], x1 = box.hi[0] - c[0];
-  const double y0 = box.lo[1] - c[1], y1 = box.hi[1] - c[1];
-  const double z0 = std::max(box.lo[2] - c[2], -r), z1 = std::min(box.hi[2] - c[2], r);
+  const double x0 = box.lo.x - c.x, x1 = box.hi.x - c.x;
+  const double y0 = box.lo.y - c.y, y1 = box.hi.y - c.y;
+  const double z0 = std::max(box.lo.z - c.z, -r), z1 = std::min(box.hi.z - c.z, r);
   if (z1 <= z0 || x1 <= -r || x0 >= r || y1 <= -r || y0 >= r) return 0.0;
   // Whole sphere inside: exact shortcut.
-  if (x0 <= -r && x1 >= r && y0 <= -r && y1 >= r && z0 <= -r && z1 >= r) return 4.0 / 3.0 * kPi * r * r * r;
+  if (x0 <= -r && x1 >= r && y0 <= -r && y1 >= r && z0 <= -r && z1 >= r) return 4.0 / 3.0 * units::pi * r * r * r;
   // Heights where a slice circle (radius rho(z)) crosses an edge line (|x_i| or |y_j|) or a corner.
   std::vector<double> cuts{z0, z1};
   auto add_level = [&](double d2) {

@@ -15,17 +15,19 @@
 
 #include <array>
 
+#include "base/vec3.h"
+
 namespace pastemix::analysis {
 
 struct Box3 {
-  std::array<double, 3> lo{};  // m
-  std::array<double, 3> hi{};  // m
+  Vec3 lo{};  // m
+  Vec3 hi{};  // m
 };
 
 // Area of the disc x^2 + y^2 < r^2 intersected with the rectangle [x0, x1] x [y0, y1] (centre at origin).
 double disc_rectangle_area(double r, double x0, double x1, double y0, double y1);
 
 // Volume (m^3) of the sphere (centre c, radius r) that lies inside the box.
-double sphere_box_volume(const std::array<double, 3>& c, double r, const Box3& box);
+double sphere_box_volume(const Vec3& c, double r, const Box3& box);
 
 }  // namespace pastemix::analysis

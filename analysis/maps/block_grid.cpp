@@ -5,11 +5,11 @@
 #include <cmath>
 
 #include "analysis/geometry/sphere_box.h"
+#include "base/units.h"
 
 namespace pastemix::analysis {
 
 BlockMasses rock_in_blocks(const BlockLayout& grid, double surface_z, const ParticleView& particles) {
-  constexpr double kPi = 3.14159265358979323846;
   BlockMasses out;
   const std::size_t nb = grid.block_count();
   out.rock_mass.assign(nb, 0.0);
@@ -23,7 +23,7 @@ BlockMasses rock_in_blocks(const BlockLayout& grid, double surface_z, const Part
   for (std::size_t p = 0; p < particles.radius.size(); ++p) {
     const auto& c = particles.position[p];
     const double r = particles.radius[p], rho = particles.density[p];
-    const double v_sphere = 4.0 / 3.0 * kPi * r * r * r;
+    const double v_sphere = 4.0 / 3.0 * units::pi * r * r * r;
     out.total += rho * v_sphere;
     // Above the surface.
     const double v_above = sphere_box_volume(c, r, Box3{{-big, -big, surface_z}, {big, big, big}});
@@ -40,10 +40,10 @@ BlockMasses rock_in_blocks(const BlockLayout& grid, double surface_z, const Part
       int b = static_cast<int>(std::floor((hi - origin) / size));
       return std::pair<int, int>{std::max(a, 0), std::min(b, n - 1)};
     };
-    auto [i0, i1] = range(c[0] - r, c[0] + r, grid.origin[0], grid.size[0], grid.count[0]);
-    auto [j0, j1] = range(c[1] - r, c[1] + r, grid.origin[1], grid.size[1], grid.count[1]);
+    auto [i0, i1] = range(c.x - r, c.x + r, grid.origin[0], grid.size[0], grid.count[0]);
+    auto [j0, j1] = range(c.y - r, c.y + r, grid.origin[1], grid.size[1], grid.count[1]);
     // Layer k spans depth [k t, (k+1) t] below the surface.
-    auto [k0, k1] = range(surface_z - (c[2] + r), surface_z - (c[2] - r), 0.0, grid.layer_thickness, grid.layers);
+    auto [k0, k1] = range(surface_z - (c.z + r), surface_z - (c.z - r), 0.0, grid.layer_thickness, grid.layers);
     if (grid.top_open && k1 < 0) k1 = 0;  // wholly above the surface: layer 1 reaches up to it
     for (int k = k0; k <= k1; ++k)
       for (int j = j0; j <= j1; ++j)
@@ -56,8 +56,8 @@ BlockMasses rock_in_blocks(const BlockLayout& grid, double surface_z, const Part
           double v = v_sub;
           if (k == 0 && grid.top_open) {  // the same footprint above the surface
             Box3 top = b;
-            top.lo[2] = surface_z;
-            top.hi[2] = big;
+            top.lo.z = surface_z;
+            top.hi.z = big;
             v += sphere_box_volume(c, r, top);
           }
           if (v <= 0.0) continue;

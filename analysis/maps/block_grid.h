@@ -29,6 +29,8 @@
 #include <span>
 #include <vector>
 
+#include "base/vec3.h"
+
 namespace pastemix::analysis {
 
 // Named BlockLayout (not BlockGrid) because lab::BlockGrid is a case's measured grid; this is only geometry.
@@ -49,7 +51,7 @@ struct BlockLayout {
 
 // Particles as read from a result file: centres (m), radii (m), densities (kg/m3).
 struct ParticleView {
-  std::span<const std::array<double, 3>> position;
+  std::span<const Vec3> position;
   std::span<const double> radius;
   std::span<const double> density;
 };

@@ -14,14 +14,13 @@ Motion motion_of(const ResultSnapshot& r, const MotionLimits& limits) {
   m.limits = limits;
   m.known = !r.velocity.empty();
   for (std::size_t p = 0; p < r.velocity.size(); ++p) {
-    const auto& v = r.velocity[p];
-    const double speed = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    const double speed = norm(r.velocity[p]);
     m.max_speed = std::max(m.max_speed, speed);
     if (speed <= limits.speed) continue;
     const double mass = r.density[p] * 4.0 / 3.0 * units::pi * r.radius[p] * r.radius[p] * r.radius[p];
     m.moving_mass += mass;
     ++m.moving_count;
-    if (r.position[p][2] > r.surface_z.value) m.in_flight_mass += mass;
+    if (r.position[p].z > r.surface_z.value) m.in_flight_mass += mass;
   }
   return m;
 }

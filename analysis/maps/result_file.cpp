@@ -21,6 +21,18 @@ bool is_snapshot_name(const std::string& s) {
   return s.size() == 6 && std::all_of(s.begin(), s.end(), [](char c) { return c >= '0' && c <= '9'; });
 }
 
+// N x 3 values (a dataset read flat) as N vectors; a non-finite component is an InputError naming the
+// dataset and the particle.
+std::vector<Vec3> vectors_of(const std::vector<double>& flat, const std::string& file, const std::string& dataset) {
+  std::vector<Vec3> out(flat.size() / 3);
+  for (std::size_t p = 0; p < out.size(); ++p) {
+    out[p] = {flat[3 * p], flat[3 * p + 1], flat[3 * p + 2]};
+    if (!std::isfinite(out[p].x) || !std::isfinite(out[p].y) || !std::isfinite(out[p].z))
+      throw InputError(file, 0, fmt::format("dataset '{}'", dataset), fmt::format("particle {} is not finite", p));
+  }
+  return out;
+}
+
 // The paste property `attr`: the override if given, else the file's root attribute, else an InputError.
 Sourced fluid_property(const H5Reader& h5, const std::string& file, const char* attr, std::optional<double> over,
                        const char* option, const char* unit, std::vector<std::string>& notes) {
@@ -101,12 +113,8 @@ ResultSnapshot read_result(const fs::path& path, const ResultOverrides& over) {
                      fmt::format("expected N x 3 with N = {} (the radius count)", n));
   if (mat.size() != n)
     throw InputError(file, 0, fmt::format("dataset '{}/material'", g), fmt::format("expected {} values", n));
-  r.position.resize(n);
+  r.position = vectors_of(pos, file, g + "/position");
   for (std::size_t p = 0; p < n; ++p) {
-    r.position[p] = {pos[3 * p], pos[3 * p + 1], pos[3 * p + 2]};
-    for (double c : r.position[p])
-      if (!std::isfinite(c))
-        throw InputError(file, 0, fmt::format("dataset '{}/position'", g), fmt::format("particle {} is not finite", p));
     if (!(r.radius[p] > 0.0) || !std::isfinite(r.radius[p]))
       throw InputError(file, 0, fmt::format("dataset '{}/radius'", g),
                        fmt::format("particle {}: radius must be positive, got {}", p, r.radius[p]));
@@ -116,13 +124,7 @@ ResultSnapshot read_result(const fs::path& path, const ResultOverrides& over) {
     const auto vel = h5.read_doubles(g + "/velocity");
     if (vel.size() != 3 * n)
       throw InputError(file, 0, fmt::format("dataset '{}/velocity'", g), fmt::format("expected {} x 3 values", n));
-    r.velocity.resize(n);
-    for (std::size_t p = 0; p < n; ++p) {
-      r.velocity[p] = {vel[3 * p], vel[3 * p + 1], vel[3 * p + 2]};
-      for (double c : r.velocity[p])
-        if (!std::isfinite(c))
-          throw InputError(file, 0, fmt::format("dataset '{}/velocity'", g), fmt::format("particle {} is not finite", p));
-    }
+    r.velocity = vectors_of(vel, file, g + "/velocity");
   }
 
   // Material densities.

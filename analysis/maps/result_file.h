@@ -21,6 +21,8 @@
 #include <string>
 #include <vector>
 
+#include "base/vec3.h"
+
 namespace pastemix {
 class H5Reader;
 }
@@ -50,9 +52,9 @@ struct ResultSnapshot {
   std::string ensemble_key;
   int snapshot = 0;                 // index of the snapshot read
   double time_s = 0.0;              // its time
-  std::vector<std::array<double, 3>> position;  // m
+  std::vector<Vec3> position;  // m
   std::vector<double> radius;                   // m
-  std::vector<std::array<double, 3>> velocity;  // m/s (empty when the snapshot has none: motion unknown)
+  std::vector<Vec3> velocity;  // m/s (empty when the snapshot has none: motion unknown)
   std::vector<double> density;                  // kg/m3 per particle (from its material)
   double escaped_mass = 0.0;                    // kg, removed at the domain boundary up to time_s
   std::size_t escaped_count = 0;

@@ -10,12 +10,12 @@
 
 #include "base/error.h"
 #include "base/stats.h"
+#include "base/units.h"
 
 namespace pastemix::analysis {
 
-ReposeAngle measure_repose_angle(std::span<const std::array<double, 3>> position, std::span<const double> radius,
+ReposeAngle measure_repose_angle(std::span<const Vec3> position, std::span<const double> radius,
                                  const ReposeOptions& opt) {
-  constexpr double kPi = 3.14159265358979323846;
   const std::size_t n = radius.size();
   if (n < 10) throw RuntimeFailure(fmt::format("repose angle: only {} particles, no pile to measure", n));
   // Axis.
@@ -27,8 +27,8 @@ ReposeAngle measure_repose_angle(std::span<const std::array<double, 3>> position
     double mass = 0.0;
     for (std::size_t p = 0; p < n; ++p) {
       const double w = radius[p] * radius[p] * radius[p];
-      axis[0] += w * position[p][0];
-      axis[1] += w * position[p][1];
+      axis[0] += w * position[p].x;
+      axis[1] += w * position[p].y;
       mass += w;
     }
     axis[0] /= mass;
@@ -41,18 +41,18 @@ ReposeAngle measure_repose_angle(std::span<const std::array<double, 3>> position
   // Surface heights per (sector, radial bin).
   double rho_max = 0.0;
   for (std::size_t p = 0; p < n; ++p)
-    rho_max = std::max(rho_max, std::hypot(position[p][0] - axis[0], position[p][1] - axis[1]));
+    rho_max = std::max(rho_max, std::hypot(position[p].x - axis[0], position[p].y - axis[1]));
   const int bins = static_cast<int>(rho_max / bin) + 1;
   const double none = -std::numeric_limits<double>::infinity();
   std::vector<double> surface(static_cast<std::size_t>(opt.sectors * bins), none);
   double height = 0.0;
   for (std::size_t p = 0; p < n; ++p) {
-    const double dx = position[p][0] - axis[0], dy = position[p][1] - axis[1];
+    const double dx = position[p].x - axis[0], dy = position[p].y - axis[1];
     const double rho = std::hypot(dx, dy);
-    double phi = std::atan2(dy, dx) + kPi;  // [0, 2 pi]
-    int s = std::min(opt.sectors - 1, static_cast<int>(phi / (2.0 * kPi) * opt.sectors));
+    double phi = std::atan2(dy, dx) + units::pi;  // [0, 2 pi]
+    int s = std::min(opt.sectors - 1, static_cast<int>(phi / (2.0 * units::pi) * opt.sectors));
     int b = static_cast<int>(rho / bin);
-    const double top = position[p][2] + radius[p] - opt.base_z;
+    const double top = position[p].z + radius[p] - opt.base_z;
     auto& cell = surface[static_cast<std::size_t>(s * bins + b)];
     cell = std::max(cell, top);
     height = std::max(height, top);
@@ -87,7 +87,7 @@ ReposeAngle measure_repose_angle(std::span<const std::array<double, 3>> position
     if (denom <= 0.0) continue;
     const double slope = (count * sxy - sx * sy) / denom;
     if (slope >= 0.0) continue;  // not a flank: a sector with debris only
-    angles.push_back(std::atan(-slope) * 180.0 / kPi);
+    angles.push_back(std::atan(-slope) * 180.0 / units::pi);
   }
   if (angles.size() < 3)
     throw RuntimeFailure(fmt::format(

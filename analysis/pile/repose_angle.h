@@ -20,6 +20,8 @@
 #include <span>
 #include <string>
 
+#include "base/vec3.h"
+
 namespace pastemix::analysis {
 
 struct ReposeOptions {
@@ -43,7 +45,7 @@ struct ReposeAngle {
 
 // Throws pastemix::RuntimeFailure when the particles do not form a pile with a measurable flank (e.g. they
 // all flowed away, or fewer than 3 sectors have 3 flank points): never a silent "0 degrees".
-ReposeAngle measure_repose_angle(std::span<const std::array<double, 3>> position, std::span<const double> radius,
+ReposeAngle measure_repose_angle(std::span<const Vec3> position, std::span<const double> radius,
                                  const ReposeOptions& options = {});
 
 }  // namespace pastemix::analysis

@@ -4,7 +4,6 @@
 #include <cmath>
 
 #include <fmt/format.h>
-#include <toml++/toml.h>
 
 #include "base/error.h"
 
@@ -37,9 +36,8 @@ BracketResult bracket_root(const std::function<Evaluation(double)>& f, double lo
 
 model::SceneDoc with_rolling_resistance(const model::SceneDoc& base, double mu) {
   model::SceneDoc d = base;
-  auto* its = d.root()["interaction"].as_array();
-  if (!its || its->empty()) throw InputError(base.path(), 0, "interaction", "the scene has no [[interaction]]");
-  for (std::size_t i = 0; i < its->size(); ++i)
+  if (base.size("interaction") == 0) throw InputError(base.path(), 0, "interaction", "the scene has no [[interaction]]");
+  for (std::size_t i = 0; i < base.size("interaction"); ++i)
     d.set("interaction." + std::to_string(i) + ".rolling_friction", fmt::format("{:.10g}", mu));
   return d;
 }

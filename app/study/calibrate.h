@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "model/scene_override.h"
+#include "model/scene_doc.h"
 
 namespace pastemix::app::study {
 

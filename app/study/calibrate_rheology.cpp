@@ -10,7 +10,6 @@
 #include <Eigen/Dense>
 #include <fmt/format.h>
 #include <omp.h>
-#include <toml++/toml.h>
 
 #include "analysis/maps/mixing_map.h"
 #include "analysis/maps/motion.h"
@@ -134,11 +133,10 @@ long scene_seed(const model::SceneDoc& d) {
 }
 
 double scene_solids(const model::SceneDoc& d) {
-  const auto* fluids = d.root()["fluid"].as_array();
-  if (!fluids) throw InputError(d.path(), 0, "fluid", "the scene has no [[fluid]]");
-  for (const auto& f : *fluids)
-    if (const auto* t = f.as_table(); t && t->contains("rheology_from"))
-      if (auto cw = (*t)["solids_fraction"].value<double>()) return *cw;
+  if (d.size("fluid") == 0) throw InputError(d.path(), 0, "fluid", "the scene has no [[fluid]]");
+  for (std::size_t k = 0; k < d.size("fluid"); ++k)
+    if (const std::string f = fmt::format("fluid.{}", k); d.has(f + ".rheology_from") && d.has(f + ".solids_fraction"))
+      return d.number(f + ".solids_fraction");
   throw InputError(d.path(), 0, "fluid.rheology_from",
                    "no [[fluid]] reads its rheology from the store (rheology_from + solids_fraction): the "
                    "calibration varies the store's model, never numbers in the scene");
@@ -194,17 +192,16 @@ QuadFit fit_near_best(const std::vector<CalPoint>& pts) {
 
 model::SceneDoc with_rheology(const model::SceneDoc& base, double tau_y, double eta_B, double density) {
   model::SceneDoc d = base;
-  auto* fluids = d.root()["fluid"].as_array();
-  if (!fluids) throw InputError(base.path(), 0, "fluid", "the scene has no [[fluid]]");
+  if (d.size("fluid") == 0) throw InputError(base.path(), 0, "fluid", "the scene has no [[fluid]]");
   int n = 0;
-  for (auto& f : *fluids) {
-    auto* t = f.as_table();
-    if (!t || !t->contains("rheology_from")) continue;
-    t->erase("rheology_from");
-    t->erase("rheology_at");
-    t->insert_or_assign("yield_stress", tau_y);
-    t->insert_or_assign("plastic_viscosity", eta_B);
-    t->insert_or_assign("density", density);
+  for (std::size_t k = 0; k < d.size("fluid"); ++k) {
+    const std::string f = fmt::format("fluid.{}", k);
+    if (!d.has(f + ".rheology_from")) continue;
+    for (const char* key : {"rheology_from", "rheology_at", "yield_stress", "plastic_viscosity", "density"})
+      if (d.has(f + "." + key)) d.erase(f + "." + key);
+    d.add_number(f, "yield_stress", tau_y);
+    d.add_number(f, "plastic_viscosity", eta_B);
+    d.add_number(f, "density", density);
     ++n;
   }
   if (n == 0) throw InputError(base.path(), 0, "fluid.rheology_from", "no [[fluid]] reads rheology_from");

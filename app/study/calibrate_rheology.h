@@ -34,7 +34,7 @@
 
 #include "analysis/maps/block_grid.h"
 #include "lab/rheology/paste_rheology.h"
-#include "model/scene_override.h"
+#include "model/scene_doc.h"
 
 namespace pastemix::app::study {
 

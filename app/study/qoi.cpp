@@ -80,9 +80,7 @@ void check_pile_finished(const World& w) {
 double repose_angle(const World& w) {
   check_pile_finished(w);
   const auto& p = w.particles();
-  std::vector<std::array<double, 3>> x(p.size());
-  for (std::size_t a = 0; a < p.size(); ++a) x[a] = {p.x[a].x, p.x[a].y, p.x[a].z};
-  return analysis::measure_repose_angle(x, p.radius).angle_deg;
+  return analysis::measure_repose_angle(p.x, p.radius).angle_deg;
 }
 
 }  // namespace

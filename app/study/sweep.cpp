@@ -14,7 +14,6 @@
 #include <omp.h>
 
 #include <fmt/format.h>
-#include <toml++/toml.h>
 
 #include "app/study/qoi.h"
 #include "base/error.h"
@@ -28,23 +27,39 @@ namespace {
 std::string lit(double v) { return fmt::format("{:.10g}", v); }
 
 std::string material_name(const model::SceneDoc& d, const SweepOptions& o) {
-  if (!o.material.empty()) return o.material;
-  return d.get("material.0.name").substr(1, d.get("material.0.name").size() - 2);  // strip quotes
+  return o.material.empty() ? d.string("material.0.name") : o.material;
 }
 
-toml::array* factories(model::SceneDoc& d) { return d.root()["factory"].as_array(); }
+std::string psd_of(std::size_t factory) { return fmt::format("factory.{}.psd", factory); }
 
 // Smallest interval lower sieve (m) over every [[factory]]'s PSD; 0 when no factory has one.
-double smallest_d_min(model::SceneDoc d) {  // a copy: factories() hands out mutable nodes
+double smallest_d_min(const model::SceneDoc& d) {
   double m = 0.0;
-  if (auto* fs = factories(d))
-    for (auto& f : *fs)
-      if (auto* psd = f.as_table() ? (*f.as_table())["psd"].as_array() : nullptr)
-        for (auto& i : *psd) {
-          const double v = (*i.as_table())["d_min"].value<double>().value_or(0);
-          if (v > 0 && (m == 0.0 || v < m)) m = v;
-        }
+  for (std::size_t f = 0; f < d.size("factory"); ++f)
+    for (std::size_t i = 0; i < d.size(psd_of(f)); ++i) {
+      const double v = d.number(fmt::format("{}.{}.d_min", psd_of(f), i));
+      if (v > 0 && (m == 0.0 || v < m)) m = v;
+    }
   return m;
+}
+
+// Drops the PSD intervals of every factory with d_max <= cut (m) and renormalises the fractions kept.
+void cut_psd(model::SceneDoc& d, const std::string& scene, double cut) {
+  if (d.size("factory") == 0) throw InputError(scene, 0, "factory", "--vary psd_cut needs a [[factory]] with a PSD");
+  for (std::size_t f = 0; f < d.size("factory"); ++f) {
+    const std::string psd = psd_of(f);
+    double kept = 0.0;
+    for (std::size_t i = 0; i < d.size(psd); ++i)
+      if (d.number(fmt::format("{}.{}.d_max", psd, i)) > cut) kept += d.number(fmt::format("{}.{}.fraction", psd, i));
+    for (std::size_t i = d.size(psd); i-- > 0;)  // from the end: erasing keeps the lower indices
+      if (d.number(fmt::format("{}.{}.d_max", psd, i)) <= cut) d.erase(fmt::format("{}.{}", psd, i));
+    if (d.has(psd) && (d.size(psd) == 0 || kept <= 0))
+      throw InputError(scene, 0, "psd_cut", fmt::format("a cut at {} m removes every interval", cut));
+    for (std::size_t i = 0; i < d.size(psd); ++i) {
+      const std::string fraction = fmt::format("{}.{}.fraction", psd, i);
+      d.set_number(fraction, d.number(fraction) / kept);
+    }
+  }
 }
 
 }  // namespace
@@ -60,28 +75,7 @@ model::SceneDoc at_value(const model::SceneDoc& base, const SweepOptions& o, dou
     d.set(key, lit(value));
     d.set("time_step", lit(dt0 * std::sqrt(e0 / value)));
   } else if (o.vary == "psd_cut") {
-    toml::array* fs = factories(d);
-    if (!fs) throw InputError(base.path(), 0, "factory", "--vary psd_cut needs a [[factory]] with a PSD");
-    for (auto& f : *fs) {
-      auto* psd = f.as_table() ? (*f.as_table())["psd"].as_array() : nullptr;
-      if (!psd) continue;
-      double kept = 0.0;
-      toml::array out;
-      for (auto& i : *psd) {
-        const auto& t = *i.as_table();
-        if (t["d_max"].value<double>().value_or(0) > value) {
-          out.push_back(t);
-          kept += t["fraction"].value<double>().value_or(0);
-        }
-      }
-      if (out.empty() || kept <= 0)
-        throw InputError(base.path(), 0, "psd_cut", fmt::format("a cut at {} m removes every interval", value));
-      for (auto& i : out) {
-        auto& t = *i.as_table();
-        t.insert_or_assign("fraction", t["fraction"].value<double>().value_or(0) / kept);
-      }
-      f.as_table()->insert_or_assign("psd", std::move(out));
-    }
+    cut_psd(d, base.path(), value);
     const double d0 = smallest_d_min(base), d1 = smallest_d_min(d);
     if (!o.fixed_dt && d0 > 0 && d1 > 0)
       d.set("time_step", lit(std::stod(base.get("time_step")) * d1 / d0));
@@ -100,12 +94,10 @@ std::vector<double> default_ladder(const model::SceneDoc& base, const SweepOptio
     const double e0 = std::stod(base.get("material." + material_name(base, o) + ".youngs_modulus"));
     for (int k = o.levels - 1; k >= 0; --k) v.push_back(e0 / std::pow(10.0, k));
   } else if (o.vary == "psd_cut") {
-    model::SceneDoc d = base;
     std::vector<double> cuts;
-    if (auto* fs = factories(d))
-      for (auto& f : *fs)
-        if (auto* psd = f.as_table() ? (*f.as_table())["psd"].as_array() : nullptr)
-          for (auto& i : *psd) cuts.push_back((*i.as_table())["d_min"].value<double>().value_or(0));
+    for (std::size_t f = 0; f < base.size("factory"); ++f)
+      for (std::size_t i = 0; i < base.size(psd_of(f)); ++i)
+        cuts.push_back(base.number(fmt::format("{}.{}.d_min", psd_of(f), i)));
     std::sort(cuts.begin(), cuts.end(), std::greater<>());
     cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
     // Coarsest first: the largest cut that keeps an interval, down to no cut.
@@ -271,9 +263,8 @@ SweepResult sweep(const model::SceneDoc& base, const SweepOptions& o) {
     ov << fmt::format("# pastemix sweep --vary {} --qoi {} --tol {:g}: chosen {} = {:.6g}\n", o.vary, o.qoi, o.tol,
                       o.vary, v);
     if (o.vary == "psd_cut") {
-      toml::array* fs = factories(const_cast<model::SceneDoc&>(d));
-      for (std::size_t i = 0; fs && i < fs->size(); ++i)
-        ov << "factory." << i << ".psd = " << d.get("factory." + std::to_string(i) + ".psd") << "\n";
+      for (std::size_t i = 0; i < d.size("factory"); ++i)
+        if (d.has(psd_of(i))) ov << psd_of(i) << " = " << d.get(psd_of(i)) << "\n";
     } else {
       if (o.vary == "youngs_modulus") {
         const std::string key = "material." + material_name(base, o) + ".youngs_modulus";

@@ -26,7 +26,7 @@
 #include <vector>
 
 #include "app/study/ladder.h"
-#include "model/scene_override.h"
+#include "model/scene_doc.h"
 
 namespace pastemix::app::study {
 

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: MIT
 // The rheology of the pastes nobody measured (70 and 72.5 % solids by mass): a one-parameter model anchored
-// at the measured 75 % paste (issue 15; DESIGN.md sections 4 and 6; docs/rheology_protocol.md).
+// at the measured 75 % paste (issue 15; ../shared/DESIGN.md sections 4 and 6; docs/rheology_protocol.md).
 //
 // Only the 75 % paste was measured: tau_y by slump (paste.yield_stress), the density with the slump tests
 // (paste.density, 1843 kg/m3), and eta_B by the thesis's steel-ball calibration (0.7 Pa.s, Table 4.4), which
-// belongs to the drag curve it was calibrated with (published_4_19, model/fluid/VALIDATION.md section 4).
+// belongs to the drag curve it was calibrated with (published_4_19, validation/fluid/VALIDATION.md section 4).
 // Every family below returns exactly those values at the anchor and has ONE free shape parameter.
 //
 // Solids volume fraction (of the solids + water, air excluded), from the solids content by mass C_w:
@@ -25,11 +25,11 @@
 //   so it uses its packing equivalent: the phi_m whose packing-family tau_y ratio between 72.5 and 75 % equals
 //   exp(2.5 b) (closed form, equivalent_packing_fraction()).
 // Priors: published fits for tailings pastes near 65-78 % solids give tau_y rising by a factor of 2-4.5 per
-//   2.5 points of solids (DESIGN.md section 6, issue 15): b in [ln 2, ln 4.5] / 2.5 = [0.277, 0.602] per wt %,
+//   2.5 points of solids (../shared/DESIGN.md section 6, issue 15): b in [ln 2, ln 4.5] / 2.5 = [0.277, 0.602] per wt %,
 //   and for the packing family the phi_m range that gives the same factors between 72.5 and 75 %
 //   ([0.537, 0.575] with the anchor above). The prior value is the middle of the range, its sd the range /
 //   sqrt(12) (uniform).
-// What a calibrated value means: calibrated on a mixing case with the paste at rest (DESIGN.md section 6),
+// What a calibrated value means: calibrated on a mixing case with the paste at rest (../shared/DESIGN.md section 6),
 //   the rheology is "at-rest effective": it also absorbs the drag curve's behaviour at Re' 10-20 and the
 //   missing paste flow. The store and the docs keep that label (kAtRestLabel).
 #pragma once

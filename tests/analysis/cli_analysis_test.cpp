@@ -15,6 +15,7 @@
 #include "base/rng.h"
 #include "tests/analysis/result_fixture.h"
 #include "tests/run_command.h"
+#include "base/units.h"
 
 namespace fs = std::filesystem;
 using namespace pastemix::test;
@@ -172,7 +173,7 @@ TEST_CASE("cli: repose measures the last snapshot of result files, with the mean
     pastemix::test::ResultSpec spec;
     spec.seed = 11 + k;
     pastemix::Rng rng(static_cast<std::uint64_t>(3 + k));
-    const double R = 0.06, t = std::tan(35.0 * 3.14159265358979323846 / 180.0), d = 0.003;
+    const double R = 0.06, t = std::tan(35.0 * pastemix::units::pi / 180.0), d = 0.003;
     while (spec.final.size() < 20000) {
       const double x = rng.uniform(-R, R), y = rng.uniform(-R, R), top = rng.uniform(d, R * t);
       if (top > R * t - std::hypot(x, y) * t) continue;
@@ -203,7 +204,7 @@ TEST_CASE("cli: maps and score refuse a state that is not at rest, and --allow-m
   s.velocity.push_back({0.0, 0.0, 0.0});
   s.velocity.push_back({0.0, 0.005, 0.0});  // below the 0.01 m/s limit: at rest
   write_result(f.dir / "moving.h5", s);
-  const double moving_g = 1e3 * 2760.0 * 4.0 / 3.0 * M_PI * 1e-6;
+  const double moving_g = 1e3 * 2760.0 * 4.0 / 3.0 * pastemix::units::pi * 1e-6;
   f.expect_bad("maps " + f.p("moving.h5"), {"moving.h5", "not at rest", fmt::format("{:.4g} g of rock moving", moving_g),
                                              "--allow-moving", "at_rest"});
   f.expect_bad("score " + f.p("moving.h5") + " --lab 3 --lab-h5 " + f.p("lab.h5"), {"moving.h5", "not at rest"});

@@ -16,6 +16,7 @@
 #include "base/h5.h"
 #include "model/scene.h"
 #include "tests/run_command.h"
+#include "base/units.h"
 
 using namespace pastemix;
 using namespace pastemix::model;
@@ -127,7 +128,7 @@ TEST_CASE("scene checks: end_time shorter than one step is an input error") {
 TEST_CASE("scene checks: a time step at 97.5 % of the Rayleigh time warns, 1e-6 s does not") {
   // T_R = pi r sqrt(rho/G) / (0.8766 + 0.163 nu), r = 0.01 m, rho = 2760, G = 4.68e7 / 2.38, nu = 0.19:
   // 4.1015e-4 s.
-  const double t_r = 3.14159265358979323846 * 0.01 * std::sqrt(2760.0 / (4.68e7 / 2.38)) / (0.8766 + 0.163 * 0.19);
+  const double t_r = pastemix::units::pi * 0.01 * std::sqrt(2760.0 / (4.68e7 / 2.38)) / (0.8766 + 0.163 * 0.19);
   std::string s = kBase;
   s.replace(s.find("time_step = 1e-6"), 16, fmt::format("time_step = {:.17g}", 0.975 * t_r));
   const Scene fast = parse_scene(s + kSphere, "fast.toml");

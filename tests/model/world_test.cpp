@@ -17,6 +17,7 @@
 #include "model/parallel.h"
 #include "tests/model/scene_text.h"
 #include "tests/run_command.h"
+#include "base/units.h"
 
 using namespace pastemix;
 using namespace pastemix::model;
@@ -107,7 +108,7 @@ TEST_CASE("incline: a sphere with rotation locked starts sliding at tan(angle) =
     const double a_theory = std::max(0.0, 9.81 * (std::sin(th) - mu * std::cos(th)));
     report += fmt::format("  angle {:.4f} deg = {:.3f} x atan(mu_s): displacement over [0.05, 0.25] s {:.3e} m, "
                           "acceleration {:.4e} m/s2 (Coulomb theory {:.4e})\n",
-                          th * 180 / M_PI, factor, dx, a, a_theory);
+                          th * 180 / pastemix::units::pi, factor, dx, a, a_theory);
     if (factor < 1) {
       CHECK(std::abs(dx) < 1e-9);  // stuck
     } else {
@@ -115,7 +116,7 @@ TEST_CASE("incline: a sphere with rotation locked starts sliding at tan(angle) =
       CHECK(a == doctest::Approx(a_theory).epsilon(0.02));
     }
   }
-  MESSAGE("incline, mu_s = 0.341 (Table 4.7), threshold atan(mu_s) = " << theta_s * 180 / M_PI << " deg:\n" << report);
+  MESSAGE("incline, mu_s = 0.341 (Table 4.7), threshold atan(mu_s) = " << theta_s * 180 / pastemix::units::pi << " deg:\n" << report);
 }
 
 namespace {

@@ -7,17 +7,18 @@
 #include <doctest/doctest.h>
 
 #include "base/rng.h"
+#include "base/units.h"
+#include "base/vec3.h"
 
 using namespace pastemix::analysis;
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
-double sphere_mass(double r, double rho) { return 4.0 / 3.0 * kPi * r * r * r * rho; }
+double sphere_mass(double r, double rho) { return 4.0 / 3.0 * pastemix::units::pi * r * r * r * rho; }
 }  // namespace
 
 TEST_CASE("block grid: a sphere inside one block puts all its mass there") {
   BlockLayout grid;  // 4 x 3 blocks of 5 x 5.5 cm, 3 layers of 3 cm, surface at z = 0.10
-  std::vector<std::array<double, 3>> pos{{0.075, 0.0825, 0.085}};  // block M_222 (x 5-10 cm, y 5.5-11 cm, depth 0-3 cm)
+  std::vector<pastemix::Vec3> pos{{0.075, 0.0825, 0.085}};  // block M_222 (x 5-10 cm, y 5.5-11 cm, depth 0-3 cm)
   std::vector<double> r{0.004}, rho{2760};
   auto m = rock_in_blocks(grid, 0.10, ParticleView{pos, r, rho});
   CHECK(m.rock_mass[grid.index(2, 2, 1)] == doctest::Approx(sphere_mass(0.004, 2760)).epsilon(1e-12));
@@ -27,7 +28,7 @@ TEST_CASE("block grid: a sphere inside one block puts all its mass there") {
 
 TEST_CASE("block grid: a sphere cut by the surface is half unmixed, the open top counts it whole in layer 1") {
   BlockLayout grid;  // top_open by default: the lab cut the unmixed cone with layer 1
-  std::vector<std::array<double, 3>> pos{{0.075, 0.0825, 0.10}};
+  std::vector<pastemix::Vec3> pos{{0.075, 0.0825, 0.10}};
   std::vector<double> r{0.004}, rho{2760};
   auto m = rock_in_blocks(grid, 0.10, ParticleView{pos, r, rho});
   CHECK(m.above_surface == doctest::Approx(0.5 * m.total).epsilon(1e-10));
@@ -45,7 +46,7 @@ TEST_CASE("block grid: a sphere cut by the surface is half unmixed, the open top
 TEST_CASE("block grid: with the open top, rock wholly above the surface lands in the layer-1 block under it") {
   BlockLayout grid;
   // Over M_321 (x 10-15 cm, y 5.5-11 cm), 5 cm above the surface; and one straddling M_221 / M_321 in x.
-  std::vector<std::array<double, 3>> pos{{0.125, 0.0825, 0.15}, {0.10, 0.0825, 0.13}};
+  std::vector<pastemix::Vec3> pos{{0.125, 0.0825, 0.15}, {0.10, 0.0825, 0.13}};
   std::vector<double> r{0.004, 0.004}, rho{2760, 2760};
   auto m = rock_in_blocks(grid, 0.10, ParticleView{pos, r, rho});
   const double one = sphere_mass(0.004, 2760);
@@ -62,7 +63,7 @@ TEST_CASE("block grid: mass conservation within 1e-9 relative for rock everywher
   pastemix::Rng rng(3);
   BlockLayout grid;
   grid.origin = {0.01, 0.005};
-  std::vector<std::array<double, 3>> pos;
+  std::vector<pastemix::Vec3> pos;
   std::vector<double> r, rho;
   for (int p = 0; p < 3000; ++p) {
     pos.push_back({rng.uniform(-0.01, 0.23), rng.uniform(-0.01, 0.19), rng.uniform(-0.01, 0.14)});

@@ -8,6 +8,8 @@
 
 #include "base/rng.h"
 #include "lab/ingest/block_cut.h"
+#include "base/units.h"
+#include "base/vec3.h"
 
 using namespace pastemix::analysis;
 namespace lab = pastemix::lab;
@@ -36,7 +38,7 @@ TEST_CASE("mixing map: one 2 cm rock in M_221 gives the hand-computed C and S") 
   // Block 5 x 5.5 x 3 cm = 8.25e-5 m3; rock r = 1 cm: 4.18879e-6 m3, 0.0115611 kg at 2760 kg/m3.
   // Paste 7.83112e-5 m3 x 1843 kg/m3 x 0.75 = 0.108246 kg dried; C = 0.0115611 / 0.119807 = 0.0964976.
   // S = 0.108246 K / (1693.75 x 0.0115611): 19.73 with K = 3570 (capped), 0.552794 with K = 100.
-  std::vector<std::array<double, 3>> pos{{0.075, 0.0825, 0.085}};
+  std::vector<pastemix::Vec3> pos{{0.075, 0.0825, 0.085}};
   std::vector<double> r{0.01}, rho{2760};
   const MixingMap m = mixing_map(thesis_inputs(3570), ParticleView{pos, r, rho});
   const std::size_t b = m.layout.index(2, 2, 1);
@@ -63,11 +65,11 @@ TEST_CASE("mixing map: one 2 cm rock in M_221 gives the hand-computed C and S") 
 
 TEST_CASE("mixing map: rock above the final surface is unmixed, it counts in layer 1 but displaces no paste") {
   // A rock sitting on the surface of M_221 with 3/4 of its height above it, and one wholly above M_311.
-  std::vector<std::array<double, 3>> pos{{0.075, 0.0825, 0.105}, {0.12, 0.03, 0.15}};
+  std::vector<pastemix::Vec3> pos{{0.075, 0.0825, 0.105}, {0.12, 0.03, 0.15}};
   std::vector<double> r{0.01, 0.005}, rho{2760, 2760};
-  const double v1 = 4.0 / 3.0 * M_PI * 1e-6, v2 = 4.0 / 3.0 * M_PI * 1.25e-7;
+  const double v1 = 4.0 / 3.0 * pastemix::units::pi * 1e-6, v2 = 4.0 / 3.0 * pastemix::units::pi * 1.25e-7;
   // Cap below the surface: height h = 0.5 cm of a 1 cm sphere, V = pi h^2 (3r - h)/3.
-  const double cap = M_PI * 0.005 * 0.005 * (0.03 - 0.005) / 3.0;
+  const double cap = pastemix::units::pi * 0.005 * 0.005 * (0.03 - 0.005) / 3.0;
   const double block = 0.05 * 0.055 * 0.03;
   MixingInputs in = thesis_inputs(3570);
   SUBCASE("top open (default, the lab's cut): the whole rock counts in M_221, paste = block - the cap") {
@@ -101,7 +103,7 @@ TEST_CASE("mixing map: mass conservation within 1e-9 relative (blocks + outside 
   MixingInputs in = thesis_inputs(3570);
   in.layout.origin = {0.004, 0.002};
   in.surface_z = 0.1031;
-  std::vector<std::array<double, 3>> pos;
+  std::vector<pastemix::Vec3> pos;
   std::vector<double> r, rho;
   for (int p = 0; p < 2000; ++p) {
     pos.push_back({rng.uniform(-0.01, 0.21), rng.uniform(-0.01, 0.175), rng.uniform(0.0, 0.14)});
@@ -110,7 +112,7 @@ TEST_CASE("mixing map: mass conservation within 1e-9 relative (blocks + outside 
   }
   const MixingMap m = mixing_map(in, ParticleView{pos, r, rho});
   double poured = 0.0, blocks = 0.0;
-  for (std::size_t p = 0; p < r.size(); ++p) poured += rho[p] * 4.0 / 3.0 * M_PI * r[p] * r[p] * r[p];
+  for (std::size_t p = 0; p < r.size(); ++p) poured += rho[p] * 4.0 / 3.0 * pastemix::units::pi * r[p] * r[p] * r[p];
   for (double x : m.rock_mass) blocks += x;
   CHECK(m.poured == doctest::Approx(poured).epsilon(1e-12));
   CHECK(m.above_surface > 0.0);
@@ -130,11 +132,11 @@ TEST_CASE("mixing map: a non-default layout (2 x 2 blocks, 4 layers) uses the sa
   in.layout.layers = 4;
   in.layout.size = {0.1, 0.0825};
   in.layout.layer_thickness = 0.02;
-  std::vector<std::array<double, 3>> pos{{0.15, 0.04, 0.05}};  // i = 2, j = 1, depth 5 cm -> layer 3
+  std::vector<pastemix::Vec3> pos{{0.15, 0.04, 0.05}};  // i = 2, j = 1, depth 5 cm -> layer 3
   std::vector<double> r{0.005}, rho{2760};
   const MixingMap m = mixing_map(in, ParticleView{pos, r, rho});
   const std::size_t b = m.layout.index(2, 1, 3);
-  const double mw = 2760 * 4.0 / 3.0 * M_PI * 1.25e-7;
+  const double mw = 2760 * 4.0 / 3.0 * pastemix::units::pi * 1.25e-7;
   const double mp = (0.1 * 0.0825 * 0.02 - mw / 2760) * 1843 * 0.75;
   CHECK(m.C.size() == 16);
   CHECK(m.C[b] == doctest::Approx(mw / (mw + mp)).epsilon(1e-10));

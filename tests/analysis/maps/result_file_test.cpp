@@ -10,6 +10,7 @@
 #include "analysis/maps/mixing_map.h"
 #include "base/error.h"
 #include "tests/analysis/result_fixture.h"
+#include "base/units.h"
 
 using namespace pastemix::analysis;
 using pastemix::InputError;
@@ -42,7 +43,7 @@ TEST_CASE("result file: reads the last snapshot, material densities and the past
   CHECK(r.seed == 7);
   CHECK(r.scene_hash == "00000000deadbeef");
   REQUIRE(r.position.size() == 2);
-  CHECK(r.position[0][2] == 0.05);
+  CHECK(r.position[0].z == 0.05);
   CHECK(r.density[0] == 2650);
   CHECK(r.density[1] == 2760);
   CHECK(r.surface_z.value == 0.10);
@@ -51,7 +52,7 @@ TEST_CASE("result file: reads the last snapshot, material densities and the past
   CHECK(r.notes.empty());
   ResultOverrides o;
   o.snapshot = 0;
-  CHECK(read_result(d / "r.h5", o).position[0][2] == doctest::Approx(1.05));
+  CHECK(read_result(d / "r.h5", o).position[0].z == doctest::Approx(1.05));
 }
 
 TEST_CASE("result file: command-line values override the file and are reported") {
@@ -126,7 +127,7 @@ TEST_CASE("result file: escaped rock up to the snapshot is poured mass, the maps
   const MixingMap m = mixing_map(in, ParticleView{r.position, r.radius, r.density});
   double in_snapshot = 0.0;
   for (std::size_t p = 0; p < r.radius.size(); ++p)
-    in_snapshot += r.density[p] * 4.0 / 3.0 * M_PI * r.radius[p] * r.radius[p] * r.radius[p];
+    in_snapshot += r.density[p] * 4.0 / 3.0 * pastemix::units::pi * r.radius[p] * r.radius[p] * r.radius[p];
   CHECK(m.escaped == r.escaped_mass);
   CHECK(m.poured == doctest::Approx(in_snapshot + r.escaped_mass).epsilon(1e-12));
   CHECK(m.beside_grid > 0.0);

@@ -8,17 +8,18 @@
 
 #include "base/error.h"
 #include "base/rng.h"
+#include "base/units.h"
+#include "base/vec3.h"
 
 using namespace pastemix::analysis;
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 // A synthetic cone pile: sphere tops sampled uniformly inside a cone of base radius R and angle theta
 // (overlaps allowed: only the surface matters to the measurement).
-void cone_pile(double theta_deg, double R, double d, std::vector<std::array<double, 3>>& pos, std::vector<double>& rad,
+void cone_pile(double theta_deg, double R, double d, std::vector<pastemix::Vec3>& pos, std::vector<double>& rad,
                std::uint64_t seed) {
   pastemix::Rng rng(seed);
-  const double t = std::tan(theta_deg * kPi / 180.0);
+  const double t = std::tan(theta_deg * pastemix::units::pi / 180.0);
   const double h0 = R * t;
   while (pos.size() < 40000) {
     const double x = rng.uniform(-R, R), y = rng.uniform(-R, R), top = rng.uniform(d, h0);
@@ -31,7 +32,7 @@ void cone_pile(double theta_deg, double R, double d, std::vector<std::array<doub
 
 TEST_CASE("repose angle: synthetic cones of 25, 35 and 40 degrees within 1 degree") {
   for (double theta : {25.0, 35.0, 40.0}) {
-    std::vector<std::array<double, 3>> pos;
+    std::vector<pastemix::Vec3> pos;
     std::vector<double> rad;
     cone_pile(theta, 0.06, 0.003, pos, rad, 9);
     auto a = measure_repose_angle(pos, rad);
@@ -48,9 +49,9 @@ TEST_CASE("repose angle: a sparse flat-topped pile with a dimple at the axis (as
   // 37 deg down to the floor), a single-layer toe ring beyond the foot, and the centre's spheres sunk to 12 mm.
   // This is the shape and sphere count (~2,500) of the real piles; the dimple's cells sit inside the flank
   // band and bent the fit before the flank was taken outward of each sector's highest cell.
-  const double d = 0.004, H = 0.04, r_top = 0.015, theta = 37.0, t = std::tan(theta * kPi / 180.0);
+  const double d = 0.004, H = 0.04, r_top = 0.015, theta = 37.0, t = std::tan(theta * pastemix::units::pi / 180.0);
   const double r_foot = r_top + H / t;
-  std::vector<std::array<double, 3>> pos;
+  std::vector<pastemix::Vec3> pos;
   std::vector<double> rad;
   pastemix::Rng rng(5);
   for (double x = -r_foot - 0.02; x <= r_foot + 0.02; x += d)
@@ -71,7 +72,7 @@ TEST_CASE("repose angle: a sparse flat-topped pile with a dimple at the axis (as
 }
 
 TEST_CASE("repose angle: particles that flowed away are a failure, not zero degrees") {
-  std::vector<std::array<double, 3>> pos;
+  std::vector<pastemix::Vec3> pos;
   std::vector<double> rad;
   pastemix::Rng rng(1);
   for (int k = 0; k < 500; ++k) {  // a single flat layer spread over the floor

@@ -7,6 +7,7 @@
 
 #include "analysis/maps/result_file.h"
 #include "tests/analysis/result_fixture.h"
+#include "base/units.h"
 
 using namespace pastemix::analysis;
 using pastemix::test::ResultSpec;
@@ -42,7 +43,7 @@ TEST_CASE("ensemble: per-block mean and sd of C over two synthetic result files"
   CHECK(e.s_class[m111] == SClass::capped);
   CHECK(e.s_class_share[m111] == 1.0);
   CHECK(e.s_class[e.layout.index(2, 2, 2)] == SClass::no_rock);
-  const double unmixed_a = 2760 * 4.0 / 3.0 * M_PI * 1.25e-7;
+  const double unmixed_a = 2760 * 4.0 / 3.0 * pastemix::units::pi * 1.25e-7;
   CHECK(e.unmixed.mean == doctest::Approx(0.5 * unmixed_a).epsilon(1e-12));
   CHECK(e.unmixed.sd == doctest::Approx(unmixed_a / std::sqrt(2.0)).epsilon(1e-12));
 }

@@ -8,6 +8,7 @@
 #include "analysis/maps/result_file.h"
 #include "base/error.h"
 #include "tests/analysis/result_fixture.h"
+#include "base/units.h"
 
 using namespace pastemix::analysis;
 using namespace pastemix::test;
@@ -61,7 +62,7 @@ TEST_CASE("score: a result equal to the lab grid scores 0 error and every S clas
   CHECK(s.classes_agree == 36);
   CHECK(!s.model_cone);  // the synthetic M_221 holds little rock
   CHECK(!s.lab_cone);
-  CHECK(s.unmixed.mean == doctest::Approx(2760 * 4.0 / 3.0 * M_PI * 2.16e-7).epsilon(1e-12));
+  CHECK(s.unmixed.mean == doctest::Approx(2760 * 4.0 / 3.0 * pastemix::units::pi * 2.16e-7).epsilon(1e-12));
   CHECK(s.lab_recovered_rock == doctest::Approx(m.in_blocks).epsilon(1e-12));
   // The block table, csv and toml carry the same numbers.
   CHECK(score_table(s).find("mean absolute C error: 0.00 pp over 36 blocks") != std::string::npos);

@@ -12,6 +12,7 @@
 
 #include "base/error.h"
 #include "tests/run_command.h"
+#include "base/units.h"
 
 using namespace pastemix;
 using namespace pastemix::app::study;
@@ -21,7 +22,7 @@ namespace {
 // Hertz (1882) peak force of two equal elastic spheres closing at v: delta_max = (15 m* v^2 / (16 E* sqrt(R*)))^(2/5),
 // F_max = 4/3 E* sqrt(R*) delta_max^1.5.
 double hertz_peak_force(double E, double rho, double nu, double R, double v) {
-  const double m = rho * 4.0 / 3.0 * M_PI * R * R * R, ms = m / 2, Rs = R / 2, Es = E / (2 * (1 - nu * nu));
+  const double m = rho * 4.0 / 3.0 * pastemix::units::pi * R * R * R, ms = m / 2, Rs = R / 2, Es = E / (2 * (1 - nu * nu));
   const double d = std::pow(15 * ms * v * v / (16 * Es * std::sqrt(Rs)), 0.4);
   return 4.0 / 3.0 * Es * std::sqrt(Rs) * std::pow(d, 1.5);
 }

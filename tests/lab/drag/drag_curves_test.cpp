@@ -9,6 +9,7 @@
 #include <doctest/doctest.h>
 
 #include "base/rng.h"
+#include "base/units.h"
 
 using namespace pastemix::drag;
 
@@ -153,7 +154,7 @@ TEST_CASE("drag curves: Dedegil drag and the settling Cd (4.17) are consistent")
   const DragCurve curve{CurveId::power_sum, {24.0, 3.0, 0.5, 0.3}};
   for (double v : {0.05, 0.3, 1.2}) {
     // Pick g so that net weight equals the drag at v, then (4.17) must return curve.cd(Re'(v)).
-    const double g = curve.drag(s, v, 0.0) / ((s.rho_p - s.rho_f) * kPi * s.d * s.d * s.d / 6.0);
+    const double g = curve.drag(s, v, 0.0) / ((s.rho_p - s.rho_f) * pastemix::units::pi * s.d * s.d * s.d / 6.0);
     const double re = bingham_reynolds(s.rho_f, v, s.tau_y, s.eta_B, s.d);
     CHECK(settling_drag_coefficient(s, v, g) == doctest::Approx(curve.cd(re, 0.0)).epsilon(1e-12));
   }

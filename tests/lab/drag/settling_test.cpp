@@ -10,6 +10,7 @@
 
 #include "base/error.h"
 #include "tests/run_command.h"
+#include "base/units.h"
 
 using namespace pastemix::lab::drag;
 namespace fs = std::filesystem;
@@ -64,7 +65,7 @@ TEST_CASE("settling: Re' (4.18) and Cd (4.17) reproduce Table 4.3 within 1.5 % f
   // Row 1 by hand: rho_f 1280, eta 0.0131, tau 30.5, d 0.0159, rho_p 6450, v 0.1.
   const auto& r1 = d.spheres.front();
   CHECK(r1.re == doctest::Approx(1280 * 0.01 / (30.5 + 0.0131 * 0.1 / 0.0159)));
-  CHECK(r1.cd == doctest::Approx(2 / (0.01 * 1280) * (2.0 / 3 * (6450 - 1280) * 0.0159 * 9.81 - M_PI * 30.5)));
+  CHECK(r1.cd == doctest::Approx(2 / (0.01 * 1280) * (2.0 / 3 * (6450 - 1280) * 0.0159 * 9.81 - pastemix::units::pi * 30.5)));
 }
 
 TEST_CASE("settling: bad rows are InputErrors naming file:line and column") {

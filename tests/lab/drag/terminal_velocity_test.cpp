@@ -12,7 +12,7 @@ using pastemix::drag::CurveId;
 using pastemix::units::g;
 
 namespace {
-constexpr double pi = pastemix::drag::kPi;
+constexpr double pi = pastemix::units::pi;
 }
 
 TEST_CASE("terminal velocity: Stokes curve, tau_y = 0, matches (rho_p - rho_f) g d^2 / (18 eta) within 1e-6") {

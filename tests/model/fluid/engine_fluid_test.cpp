@@ -17,7 +17,7 @@
 #include "lab/drag/settling.h"
 #include "lab/drag/terminal_velocity.h"
 #include "model/fluid/fluid_scene.h"
-#include "model/fluid/validations.h"
+#include "validation/fluid/validations.h"
 #include "model/parallel.h"
 #include "model/run.h"
 #include "model/scene.h"
@@ -26,6 +26,7 @@
 using namespace pastemix;
 using namespace pastemix::model;
 using namespace pastemix::model::fluid;
+using namespace pastemix::validation;
 
 namespace {
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Two-sphere impacts against Hertz and Mindlin theory (DESIGN.md section 4, thesis Table 5.1).
+// Two-sphere impacts against Hertz and Mindlin theory (../shared/DESIGN.md section 4, thesis Table 5.1).
 #include "model/laws/hertz_mindlin.h"
 
 #include <doctest/doctest.h>

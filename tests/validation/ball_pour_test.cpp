@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
-// The funnel pour of the thesis's multi-ball test (model/fluid/ball_pour.*) on a reduced size, and the
+// The funnel pour of the thesis's multi-ball test (validation/fluid/ball_pour.*) on a reduced size, and the
 // `pastemix validate ball-pour` command that runs it (app/cmd_fluid_pour.cpp).
-#include "model/fluid/ball_pour.h"
+#include "validation/fluid/ball_pour.h"
 
 #include <doctest/doctest.h>
 
@@ -9,7 +9,7 @@
 
 #include "tests/run_command.h"
 
-using namespace pastemix::model::fluid;
+using namespace pastemix::validation;
 
 namespace {
 std::filesystem::path source_dir() { return PASTEMIX_SOURCE_DIR; }

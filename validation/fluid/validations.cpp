@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "model/fluid/validations.h"
+#include "validation/fluid/validations.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,13 +7,16 @@
 #include <fmt/format.h>
 
 #include "base/error.h"
+#include "base/units.h"
 #include "model/scene.h"
 
-namespace pastemix::model::fluid {
+namespace pastemix::validation {
+
+using namespace model;          // the engine these harnesses drive
+using namespace model::fluid;
 
 namespace {
 constexpr double kG = 9.81;  // m/s2, the scene default gravity
-constexpr double kPiV = 3.14159265358979323846;
 }  // namespace
 
 WaterSettling water_settling(double dt) {
@@ -60,7 +63,7 @@ double suspension_threshold(const drag::DragCurve& curve) {
   // leftover is a 1e-30^(1-b) (1e-6 a for the lab fit's b = 0.80; large only as b -> 1).
   // For a curve that depends on the yield number this is its Y = 0 limit (the validations use fixed curves).
   const double k = curve.cd(1e-30, 0.0) * 1e-30;
-  return (kPiV / 6.0) / (kPiV * kPiV / 4.0 + k * kPiV / 8.0);
+  return (units::pi / 6.0) / (units::pi * units::pi / 4.0 + k * units::pi / 8.0);
 }
 
 SuspensionResult suspension(SphereRun r, double end_time) {
@@ -79,7 +82,7 @@ BallDrop steel_ball_drop(const SteelBallPaste& p, double d, double height, doubl
   r.d = d, r.rho_p = p.rho_ball, r.rho_f = p.rho_paste, r.tau_y = p.tau_y, r.eta = eta_B, r.curve = p.curve;
   r.depth = p.mould_height;
   // The mould is round (75 mm); the fluid box has the same area, so the surface rises as in the mould.
-  r.box_half = 0.5 * std::sqrt(kPiV / 4.0) * p.mould_diameter;
+  r.box_half = 0.5 * std::sqrt(units::pi / 4.0) * p.mould_diameter;
   r.drop = height, r.dt = p.dt, r.floor = true;
   r.mould_radius = p.mould_wall ? 0.5 * p.mould_diameter : 0.0;
   r.x0 = p.offset;
@@ -117,4 +120,4 @@ Calibration calibrate_viscosity(const SteelBallPaste& p, double d, double height
   return c;
 }
 
-}  // namespace pastemix::model::fluid
+}  // namespace pastemix::validation

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Fluid validations through the engine (one sphere per run, model/fluid/single_sphere.h). The CLI
+// Fluid validations through the engine (one sphere per run, validation/fluid/single_sphere.h). The CLI
 // (`pastemix validate ...`, `pastemix calibrate viscosity`) prints their tables; the tests run reduced sizes.
 #pragma once
 
@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "model/fluid/single_sphere.h"
+#include "validation/fluid/single_sphere.h"
 
-namespace pastemix::model::fluid {
+namespace pastemix::validation {
 
 // --- 1. Water settling (Table 4.1): 0.1 mm, 2700 kg/m3 in water (1000 kg/m3, 1e-3 Pa.s), Stokes drag. ---
 struct WaterSettling {
@@ -71,4 +71,4 @@ struct Calibration {
 Calibration calibrate_viscosity(const SteelBallPaste& paste, double d, double height, double distance,
                                 double eta_lo = 0.01, double eta_hi = 100.0, double rel_tol = 1e-4);
 
-}  // namespace pastemix::model::fluid
+}  // namespace pastemix::validation

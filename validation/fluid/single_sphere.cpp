@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "model/fluid/single_sphere.h"
+#include "validation/fluid/single_sphere.h"
 
 #include <cmath>
 
@@ -7,7 +7,10 @@
 
 #include "model/scene.h"
 
-namespace pastemix::model::fluid {
+namespace pastemix::validation {
+
+using namespace model;          // the engine these harnesses drive
+using namespace model::fluid;
 
 std::string single_sphere_scene(const SphereRun& r, double end_time) {
   const double rad = 0.5 * r.d;
@@ -90,4 +93,4 @@ double settling_distance(const SphereRun& r, const SphereTrace& tr) {
   return tr.surface0 - (tr.z.back() - 0.5 * r.d);
 }
 
-}  // namespace pastemix::model::fluid
+}  // namespace pastemix::validation

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "model/fluid/ball_pour.h"
+#include "validation/fluid/ball_pour.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,13 +7,16 @@
 #include <fmt/format.h>
 
 #include "base/error.h"
+#include "base/units.h"
 #include "model/insert/fill.h"
 #include "model/scene.h"
 
-namespace pastemix::model::fluid {
+namespace pastemix::validation {
+
+using namespace model;          // the engine these harnesses drive
+using namespace model::fluid;
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 
 struct Geometry {
   double cx, cy;       // m, funnel and frame axis
@@ -46,7 +49,7 @@ std::vector<Wall> funnel_walls(const FunnelPour& p, const Geometry& g) {
 
 double rayleigh_time(const FunnelPour& p) {
   const double G = p.youngs_modulus / (2.0 * (1.0 + p.poisson));
-  return kPi * 0.5 * p.ball_d * std::sqrt(p.rho_ball / G) / (0.8766 + 0.163 * p.poisson);
+  return units::pi * 0.5 * p.ball_d * std::sqrt(p.rho_ball / G) / (0.8766 + 0.163 * p.poisson);
 }
 
 std::string ball_pour_scene(const FunnelPour& p, std::uint64_t seed) {
@@ -163,4 +166,4 @@ BallPourResult ball_pour(const FunnelPour& p, std::uint64_t seed) {
   return b;
 }
 
-}  // namespace pastemix::model::fluid
+}  // namespace pastemix::validation

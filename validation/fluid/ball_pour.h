@@ -24,7 +24,7 @@
 
 #include "base/drag_curves.h"
 
-namespace pastemix::model::fluid {
+namespace pastemix::validation {
 
 struct FunnelPour {
   int balls = 68;
@@ -68,4 +68,4 @@ std::string ball_pour_scene(const FunnelPour& p, std::uint64_t seed);
 // Runs one seeded pour until every ball rests in the paste (checked every 1000 steps) or end_time.
 BallPourResult ball_pour(const FunnelPour& p, std::uint64_t seed);
 
-}  // namespace pastemix::model::fluid
+}  // namespace pastemix::validation

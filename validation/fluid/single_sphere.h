@@ -9,7 +9,7 @@
 
 #include "base/drag_curves.h"
 
-namespace pastemix::model::fluid {
+namespace pastemix::validation {
 
 struct SphereRun {
   double d = 0.0;          // m, sphere diameter
@@ -48,4 +48,4 @@ SphereTrace run_single_sphere(const SphereRun& run, double end_time, long rest_s
 // Settling distance (m): from the initial free surface to the sphere's bottom at rest (trace.stopped).
 double settling_distance(const SphereRun& run, const SphereTrace& trace);
 
-}  // namespace pastemix::model::fluid
+}  // namespace pastemix::validation
