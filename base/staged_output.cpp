@@ -63,6 +63,26 @@ void checked_rename(const fs::path& from, const fs::path& to, const fs::path& fi
 
 }  // namespace
 
+void replace_file_atomically(const fs::path& path, const std::string& bytes) {
+  const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw InputError(dir.string(), 0, "", fmt::format("cannot create the folder: {}", ec.message()));
+  remove_stale_siblings(path);
+  fs::path temp = path;
+  temp += suffix("partial");
+  try {
+    write_file_synced(temp, bytes);
+    fs::rename(temp, path, ec);
+    if (ec) throw InputError(path.string(), 0, "", fmt::format("cannot move {} into place: {}", temp.string(), ec.message()));
+  } catch (...) {
+    std::error_code rm;
+    fs::remove(temp, rm);
+    throw;
+  }
+  sync_path(dir);
+}
+
 void sync_path(const fs::path& path) {
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0) fail(path, "cannot open to sync", errno);
