@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -22,6 +23,9 @@
 #include <fmt/format.h>
 
 #include "base/h5.h"
+#include "model/checkpoint.h"
+#include "model/run.h"
+#include "model/scene.h"
 #include "tests/run_command.h"
 
 namespace fs = std::filesystem;
@@ -186,5 +190,46 @@ TEST_CASE("run --resume: without a checkpoint it starts from 0, a damaged one is
   INFO(r.output);
   CHECK(r.exit_code == 2);
   CHECK(r.output.find((dir / "hertz_impact_m1.checkpoint.h5").string()) != std::string::npos);
+  fs::remove_all(dir);
+}
+
+namespace {
+
+// The small pour of fuzz/corpus (2 g of 2.5-5 mm rock into the box: contacts, walls, rolling), 0.15 s.
+std::string small_pour(const std::string& extra_output) {
+  std::ifstream in(pastemix::test::source_path("fuzz/corpus/scene/pour_box_small.toml"));
+  std::stringstream s;
+  s << in.rdbuf();
+  std::string text = s.str();
+  const std::string key = "end_time = 1.0";
+  text.replace(text.find(key), key.size(), "end_time = 0.15");
+  const std::string out = "[output]\n";
+  text.replace(text.find(out), out.size(), out + extra_output);
+  return text;
+}
+
+}  // namespace
+
+TEST_CASE("run: checkpoints by [output] checkpoint_interval change no bit and force no neighbour rebuild") {
+  using namespace pastemix::model;
+  const fs::path dir = fs::absolute(fmt::format("model_checkpoint_interval_{}", ::getpid()));
+  fs::remove_all(dir);
+  RunOptions ro;
+  ro.progress = false;
+  ro.stem = "plain";
+  const RunSummary plain = run_scene(parse_scene(small_pour(""), (dir / "pour.toml").string()), dir, ro);
+  ro.stem = "ckpt";
+  // Every 2.2 ms of simulated time = 440 steps of 5e-6 s: a checkpoint at the first of the loop's stops at or
+  // after each (its 50-step checks, snapshots, samples), 68 in the 0.15 s.
+  const RunSummary ck =
+      run_scene(parse_scene(small_pour("checkpoint_interval = 2.2e-3\n"), (dir / "pour.toml").string()), dir, ro);
+  CHECK(plain.checkpoints == 0);
+  CHECK(ck.checkpoints >= 60);
+  CHECK(ck.steps == plain.steps);
+  CHECK(ck.profile.rebuilds == plain.profile.rebuilds);
+  CHECK(!fs::exists(checkpoint_path(dir, "ckpt")));  // removed once the result is out
+  const H5Reader a(plain.h5), b(ck.h5);
+  same_tree(a, b, "/snapshots");
+  same_tree(a, b, "/timeseries");
   fs::remove_all(dir);
 }
