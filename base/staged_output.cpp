@@ -42,6 +42,8 @@ bool is_stale_sibling(const fs::path& candidate, const fs::path& final_path) {
   return false;
 }
 
+}  // namespace
+
 void remove_stale_siblings(const fs::path& final_path) {
   std::error_code ec;
   const fs::path dir = final_path.has_parent_path() ? final_path.parent_path() : fs::path(".");
@@ -51,6 +53,8 @@ void remove_stale_siblings(const fs::path& final_path) {
       fs::remove_all(it->path(), rm);
     }
 }
+
+namespace {
 
 void checked_rename(const fs::path& from, const fs::path& to, const fs::path& final_path) {
   const char* fault = std::getenv("PASTEMIX_FAULT_RENAME");

@@ -54,6 +54,8 @@ void write_file_synced(const std::filesystem::path& path, const std::string& tex
 // `path`, fsync of the folder. A kill at any point leaves the old file or the new one under `path`, never
 // a mix; stale partials of dead processes are removed first. InputError (path, cause) on any failure.
 void replace_file_atomically(const std::filesystem::path& path, const std::string& bytes);
+// Removes "<path>.partial-<pid>" and "<path>.old-<pid>" of processes that no longer run (a kill -9).
+void remove_stale_siblings(const std::filesystem::path& path);
 // fsyncs an existing file (or folder); InputError (path, cause) on failure.
 void sync_path(const std::filesystem::path& path);
 

@@ -68,6 +68,7 @@ RunSummary run_checked(const Scene& scene, const std::filesystem::path& out_dir,
   // Checkpoints: taken only where the loop stops anyway (below), so they change no batch of steps.
   const std::filesystem::path ckpt = checkpoint_path(out_dir, stem);
   const long ckpt_every = scene.checkpoint_interval > 0 ? std::max(1L, std::lround(scene.checkpoint_interval / dt)) : 0;
+  remove_stale_siblings(ckpt);  // a checkpoint being written when an earlier run was killed
   double wall_before = 0.0;  // s, of the run before its checkpoint
   long s0 = 0;
   auto emit = [&](long s, bool last) {
