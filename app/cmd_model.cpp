@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
-// `pastemix run SCENE.toml [--out DIR] [--threads N] [--quiet] [--realizations N [--seed S]]`: runs an f-DEM
-// scene, writes HDF5 + XDMF, prints the per-stage profile. With --realizations N: N seeded realizations, the
+// `pastemix run SCENE.toml [--out DIR] [--threads N] [--quiet] [--realizations N [--seed S]]
+//  [--checkpoint-every WALL_S] [--resume DIR]`: runs an f-DEM scene, writes HDF5 + XDMF, prints the per-stage
+// profile. Checkpoints and --resume: model/checkpoint.h; a run whose checkpoint is there must be resumed
+// (or the file deleted): a fresh run would silently throw its progress away. With --realizations N: N seeded realizations, the
 // scene's `seed` set to S, S+1, ... (S default: the scene's seed), run one after another with all threads,
 // written as NAME_r0 ... NAME_r{N-1}; every factory takes its seed from the scene seed, so the rock sizes and
 // positions change (a factory with its own `seed` would not: rejected).
@@ -18,6 +20,7 @@
 
 #include "app/commands.h"
 #include "base/error.h"
+#include "model/checkpoint.h"
 #include "model/run.h"
 #include "model/scene.h"
 #include "model/scene_doc.h"
@@ -26,7 +29,33 @@ namespace pastemix::app {
 
 namespace {
 
-void run_one(const model::Scene& scene, const std::string& out_dir, bool quiet, const std::string& stem) {
+struct Resume {
+  double wall_every = 0.0;  // s, --checkpoint-every
+  bool resume = false;      // --resume given
+  std::string command;      // the command line that resumes this run
+};
+
+// With --resume: "finished" (the result is there and no checkpoint: skipped), else resumes; without: a
+// checkpoint left by a killed run stops a fresh start (exit 2) rather than being overwritten.
+bool should_run(const std::string& out_dir, const std::string& stem, const Resume& rs) {
+  const auto ck = model::checkpoint_path(out_dir, stem);
+  const bool has_ck = std::filesystem::exists(ck);
+  if (rs.resume && !has_ck && std::filesystem::exists(std::filesystem::path(out_dir) / (stem + ".h5"))) {
+    fmt::print("{}: finished earlier (no checkpoint), not run again\n", (std::filesystem::path(out_dir) / (stem + ".h5")).string());
+    return false;
+  }
+  if (!rs.resume && has_ck) {
+    const model::CheckpointInfo info = model::read_checkpoint_info(ck);
+    throw InputError(ck.string(), 0, "",
+                     fmt::format("an interrupted run of this scene stopped at t = {:.6g} s (step {}): continue it "
+                                 "with `{}`, or delete the file to start again",
+                                 info.time, info.step, rs.command));
+  }
+  return true;
+}
+
+void run_one(const model::Scene& scene, const std::string& out_dir, bool quiet, const std::string& stem,
+             const Resume& rs) {
   // The time step against the Rayleigh time of the smallest sphere (../shared/DESIGN.md section 3):
   // informative, the right step is found by a convergence study, not by habit.
   const double tr = model::smallest_rayleigh_time(scene);
@@ -36,7 +65,13 @@ void run_one(const model::Scene& scene, const std::string& out_dir, bool quiet, 
   model::RunOptions ro;
   ro.progress = !quiet;
   ro.stem = stem;
+  ro.checkpoint_wall_s = rs.wall_every;
+  ro.resume = rs.resume && std::filesystem::exists(model::checkpoint_path(
+                               out_dir, stem.empty() ? std::filesystem::path(scene.path).stem().string() : stem));
+  if (rs.resume && !ro.resume) fmt::print(stderr, "no checkpoint of this run in {}: starting from t = 0\n", out_dir);
+  ro.resume_with = rs.command;
   const model::RunSummary r = model::run_scene(scene, out_dir, ro);
+  if (r.resumed_at_step >= 0) fmt::print("resumed at step {} of the checkpoint\n", r.resumed_at_step);
   fmt::print("{} particles, {} steps of {:.3g} s, {} thread(s)\n", scene.particles.size(), r.steps, scene.config.dt,
              r.threads);
   fmt::print("{}", r.profile_table);
@@ -66,6 +101,8 @@ void register_model_commands(CLI::App& app) {
     std::string overrides;
     int realizations = 0;
     long seed = -1;
+    double checkpoint_every = 0.0;
+    std::string resume;
   };
   auto opts = std::make_shared<Opts>();
   CLI::App* run = app.add_subcommand("run", "run an f-DEM scene (TOML) and write <stem>.h5 + <stem>.xmf");
@@ -79,15 +116,36 @@ void register_model_commands(CLI::App& app) {
       ->check(CLI::Range(1, 10000));
   run->add_option("--seed", opts->seed, "first seed of the realizations (default: the scene's seed)")
       ->check(CLI::Range(0L, 1L << 62));
+  run->add_option("--checkpoint-every", opts->checkpoint_every,
+                  "also write a checkpoint every this many seconds of wall-clock time (model/checkpoint.h)")
+      ->check(CLI::PositiveNumber);
+  run->add_option("--resume", opts->resume,
+                  "continue the interrupted run whose checkpoint is in DIR (its output folder; same scene and --set)");
   run->callback([opts, run] {
     // 0 or a negative count used to mean "all cores" silently.
     if (run->count("--threads") && opts->threads < 1)
       throw InputError("--threads", 0, "", fmt::format("expected a thread count >= 1, got {}", opts->threads));
     if (opts->threads > 0) omp_set_num_threads(opts->threads);
+    if (!opts->resume.empty()) {
+      if (run->count("--out") && std::filesystem::path(opts->out) != std::filesystem::path(opts->resume))
+        throw InputError("--resume", 0, "", fmt::format("resumes into its own folder {}; --out {} differs", opts->resume, opts->out));
+      opts->out = opts->resume;
+    }
+    Resume rs;
+    rs.wall_every = opts->checkpoint_every;
+    rs.resume = !opts->resume.empty();
+    // The command that continues this run (stored in its checkpoints, quoted in messages).
+    rs.command = fmt::format("pastemix run {} --resume {}", opts->scene, opts->out);
+    if (!opts->overrides.empty()) rs.command += " --overrides " + opts->overrides;
+    for (const auto& s : opts->sets) rs.command += " --set " + s;
+    if (opts->realizations > 0) rs.command += fmt::format(" --realizations {}", opts->realizations);
+    if (opts->seed >= 0) rs.command += fmt::format(" --seed {}", opts->seed);
     model::SceneDoc doc = model::scene_with_overrides(opts->scene, opts->overrides, opts->sets);
     if (opts->realizations == 0) {
       if (opts->seed >= 0) doc.apply(fmt::format("seed={}", opts->seed));
-      run_one(doc.load(), opts->out, opts->quiet, "");
+      const model::Scene scene = doc.load();
+      if (should_run(opts->out, std::filesystem::path(scene.path).stem().string(), rs))
+        run_one(scene, opts->out, opts->quiet, "", rs);
       return;
     }
     reject_factory_seeds(doc);
@@ -100,9 +158,13 @@ void register_model_commands(CLI::App& app) {
       scenes.push_back(dk.load());
     }
     const std::string stem = std::filesystem::path(opts->scene).stem().string();
+    std::vector<char> todo;
+    for (int k = 0; k < opts->realizations; ++k) todo.push_back(should_run(opts->out, fmt::format("{}_r{}", stem, k), rs));
     for (int k = 0; k < opts->realizations; ++k) {
+      const std::string sk = fmt::format("{}_r{}", stem, k);
+      if (!todo[static_cast<std::size_t>(k)]) continue;
       fmt::print("realization {} of {}: seed {}\n", k + 1, opts->realizations, first + k);
-      run_one(scenes[static_cast<std::size_t>(k)], opts->out, opts->quiet, fmt::format("{}_r{}", stem, k));
+      run_one(scenes[static_cast<std::size_t>(k)], opts->out, opts->quiet, sk, rs);
     }
   });
 }

@@ -4,6 +4,9 @@
 #include <H5Cpp.h>
 #include <fmt/format.h>
 
+#include <unistd.h>
+
+#include <atomic>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -141,6 +144,31 @@ H5Writer::H5Writer(const std::filesystem::path& path) : impl_(std::make_unique<I
     H5Gclose(g);
   });
 }
+H5Writer::H5Writer(const std::filesystem::path& path, const std::string& image) : impl_(std::make_unique<Impl>()) {
+  H5::Exception::dontPrint();
+  impl_->path = path.string();
+  impl_->open = true;
+  impl_->uncaught_at_open = std::uncaught_exceptions();
+  guard("open an image", [&] {
+    const hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+    H5Pset_fapl_core(fapl, kCoreIncrement, /*backing_store=*/0);
+    // The library copies the image (no callbacks set): the caller's string may go.
+    H5Pset_file_image(fapl, const_cast<char*>(image.data()), image.size());
+    // HDF5 names the in-memory file: under `path` it would refuse to open when a file of that name is on
+    // disk, and share the file of another writer open under the same name. A name that cannot exist on
+    // disk, one per image; `path` is where close() writes it.
+    static std::atomic<long> images{0};
+    const std::string name = fmt::format("/dev/null/pastemix-image-{}-{}", static_cast<long>(::getpid()), images++);
+    impl_->file = H5Fopen(name.c_str(), H5F_ACC_RDWR, fapl);
+    H5Pclose(fapl);
+    if (impl_->file < 0) throw std::runtime_error("not an HDF5 file image");
+    const hid_t g = H5Gopen2(impl_->file, "/", H5P_DEFAULT);
+    if (g < 0) throw std::runtime_error("cannot open the root group");
+    impl_->root.emplace(g);
+    H5Gclose(g);
+  });
+}
+
 // Destroyed on the way out of an error (stack unwinding): nothing is written, the StagedOutput removes the
 // name. Destroyed normally without close(): written as close() would, but a failure can only be printed
 // (callers that publish the file call close() so that a failure stops the command).
@@ -158,19 +186,31 @@ H5Writer::~H5Writer() {
   }
 }
 
-void H5Writer::close() {
-  std::string image;
-  guard("close", [&] {
+std::string H5Writer::image() {
+  std::string out;
+  guard("image", [&] {
     if (H5Fflush(impl_->file, H5F_SCOPE_GLOBAL) < 0) throw std::runtime_error("H5Fflush failed");
     const ssize_t size = H5Fget_file_image(impl_->file, nullptr, 0);
     if (size < 0) throw std::runtime_error("H5Fget_file_image failed");
-    image.resize(static_cast<std::size_t>(size));
-    if (H5Fget_file_image(impl_->file, image.data(), image.size()) != size)
+    out.resize(static_cast<std::size_t>(size));
+    if (H5Fget_file_image(impl_->file, out.data(), out.size()) != size)
       throw std::runtime_error("H5Fget_file_image failed");
+  });
+  return out;
+}
+
+void H5Writer::close() {
+  std::string image = this->image();
+  guard("close", [&] {
     impl_->open = false;
     if (!impl_->close_once()) throw std::runtime_error("H5Fclose failed");
   });
   write_file_synced(impl_->path, image);  // InputError (path, the system's cause) on a full disk
+}
+
+void H5Writer::discard() {
+  impl_->open = false;
+  impl_->close_once();
 }
 
 void H5Writer::create_group(std::string_view path) {
@@ -188,6 +228,16 @@ void H5Writer::write(std::string_view path, std::span<const std::int64_t> data, 
 }
 void H5Writer::write(std::string_view path, std::span<const std::int32_t> data, std::vector<std::uint64_t> dims) {
   guard(path, [&] { write_numeric(*impl_->root, path, data, std::move(dims), H5::PredType::NATIVE_INT32); });
+}
+
+void H5Writer::write_bytes(std::string_view path, std::span<const std::uint8_t> data) {
+  guard(path, [&] { write_numeric(*impl_->root, path, data, {}, H5::PredType::NATIVE_UINT8); });
+}
+void H5Writer::remove(std::string_view path) {
+  guard(path, [&] {
+    if (H5Ldelete(impl_->file, std::string(path).c_str(), H5P_DEFAULT) < 0)
+      throw std::runtime_error(fmt::format("cannot unlink '{}'", path));
+  });
 }
 
 void H5Writer::write_strings(std::string_view path, const std::vector<std::string>& data) {
@@ -318,6 +368,17 @@ std::vector<std::int64_t> H5Reader::read_ints(std::string_view path) const {
     return read_ints_raw(impl_->file, impl_->path, path);
   } catch (const H5::Exception& e) {
     // A dataset of another type or shape than expected (a file from another tool): an input error, not an abort.
+    throw InputError(impl_->path, 0, fmt::format("dataset '{}'", path), fmt::format("cannot read: {}", e.getDetailMsg()));
+  }
+}
+
+std::vector<std::uint8_t> H5Reader::read_bytes(std::string_view path) const {
+  try {
+    H5::DataSet ds = open_dataset(impl_->file, impl_->path, path);
+    std::vector<std::uint8_t> out(static_cast<std::size_t>(ds.getSpace().getSimpleExtentNpoints()));
+    if (!out.empty()) ds.read(out.data(), H5::PredType::NATIVE_UINT8);
+    return out;
+  } catch (const H5::Exception& e) {
     throw InputError(impl_->path, 0, fmt::format("dataset '{}'", path), fmt::format("cannot read: {}", e.getDetailMsg()));
   }
 }

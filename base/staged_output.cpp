@@ -42,6 +42,8 @@ bool is_stale_sibling(const fs::path& candidate, const fs::path& final_path) {
   return false;
 }
 
+}  // namespace
+
 void remove_stale_siblings(const fs::path& final_path) {
   std::error_code ec;
   const fs::path dir = final_path.has_parent_path() ? final_path.parent_path() : fs::path(".");
@@ -51,6 +53,8 @@ void remove_stale_siblings(const fs::path& final_path) {
       fs::remove_all(it->path(), rm);
     }
 }
+
+namespace {
 
 void checked_rename(const fs::path& from, const fs::path& to, const fs::path& final_path) {
   const char* fault = std::getenv("PASTEMIX_FAULT_RENAME");
@@ -62,6 +66,26 @@ void checked_rename(const fs::path& from, const fs::path& to, const fs::path& fi
 }
 
 }  // namespace
+
+void replace_file_atomically(const fs::path& path, const std::string& bytes) {
+  const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw InputError(dir.string(), 0, "", fmt::format("cannot create the folder: {}", ec.message()));
+  remove_stale_siblings(path);
+  fs::path temp = path;
+  temp += suffix("partial");
+  try {
+    write_file_synced(temp, bytes);
+    fs::rename(temp, path, ec);
+    if (ec) throw InputError(path.string(), 0, "", fmt::format("cannot move {} into place: {}", temp.string(), ec.message()));
+  } catch (...) {
+    std::error_code rm;
+    fs::remove(temp, rm);
+    throw;
+  }
+  sync_path(dir);
+}
 
 void sync_path(const fs::path& path) {
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);

@@ -50,6 +50,12 @@ class StagedOutput {
 
 // Writes `text` to `path`, flushes and fsyncs it; InputError (path, cause) on any failure.
 void write_file_synced(const std::filesystem::path& path, const std::string& text);
+// Replaces one file atomically (a checkpoint): `bytes` to "<path>.partial-<pid>", fsync, rename over
+// `path`, fsync of the folder. A kill at any point leaves the old file or the new one under `path`, never
+// a mix; stale partials of dead processes are removed first. InputError (path, cause) on any failure.
+void replace_file_atomically(const std::filesystem::path& path, const std::string& bytes);
+// Removes "<path>.partial-<pid>" and "<path>.old-<pid>" of processes that no longer run (a kill -9).
+void remove_stale_siblings(const std::filesystem::path& path);
 // fsyncs an existing file (or folder); InputError (path, cause) on failure.
 void sync_path(const std::filesystem::path& path);
 

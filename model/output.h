@@ -48,6 +48,7 @@ class H5Writer;
 namespace pastemix::model {
 
 struct Scene;
+struct CheckpointAccess;
 
 class RunOutput {
  public:
@@ -63,6 +64,7 @@ class RunOutput {
   std::string finish(const World& w, double wall_seconds, int threads);
 
  private:
+  friend struct CheckpointAccess;  // model/checkpoint.cpp: the result so far travels in the checkpoint
   void write_escaped(const World& w);
   std::unique_ptr<H5Writer> h5_;
   std::string h5_name_;

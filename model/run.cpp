@@ -9,7 +9,9 @@
 #include <fmt/format.h>
 #include <omp.h>
 
+#include "base/error.h"
 #include "base/staged_output.h"
+#include "model/checkpoint.h"
 #include "model/output.h"
 
 namespace pastemix::model {
@@ -36,7 +38,9 @@ std::string RunSummary::escaped_line() const {
                      total_mass);
 }
 
-RunSummary run_scene(const Scene& scene, const std::filesystem::path& out_dir, const RunOptions& opt) {
+namespace {
+
+RunSummary run_checked(const Scene& scene, const std::filesystem::path& out_dir, const RunOptions& opt) {
   using Clock = std::chrono::steady_clock;
   RunSummary r;
   r.threads = omp_get_max_threads();
@@ -61,18 +65,33 @@ RunSummary run_scene(const Scene& scene, const std::filesystem::path& out_dir, c
   RestMonitor rest(rule, dt, total_steps);
   const long stop_every = rest.every();
   bool fired = false;
+  // Checkpoints: taken only where the loop stops anyway (below), so they change no batch of steps.
+  const std::filesystem::path ckpt = checkpoint_path(out_dir, stem);
+  const long ckpt_every = scene.checkpoint_interval > 0 ? std::max(1L, std::lround(scene.checkpoint_interval / dt)) : 0;
+  remove_stale_siblings(ckpt);  // a checkpoint being written when an earlier run was killed
+  double wall_before = 0.0;  // s, of the run before its checkpoint
+  long s0 = 0;
   auto emit = [&](long s, bool last) {
     auto timer0 = Clock::now();
     if (s % snap_every == 0 || last) out.snapshot(world);
     if (s % sample_every == 0 || last) out.sample(world);
     world.profile().seconds[Profile::output] += std::chrono::duration<double>(Clock::now() - timer0).count();
   };
-  world.check();
-  emit(0, total_steps == 0);
+  if (opt.resume) {
+    const CheckpointInfo info = resume_from_checkpoint(ckpt, scene, world, rest, out, h5_tmp);
+    s0 = info.step;
+    wall_before = info.wall_seconds;
+    r.resumed_at_step = s0;
+  } else {
+    world.check();
+    emit(0, total_steps == 0);
+  }
+  long ckpt_step = s0;
+  auto ckpt_wall = Clock::now();
   // Steps run in batches up to the next step that checks, writes or reports: World::advance fuses the end
   // of one step with the start of the next inside a batch (the same trajectory as single steps).
   auto next_multiple = [](long s, long every) { return (s / every + 1) * every; };
-  for (long s = 0; s < total_steps;) {
+  for (long s = s0; s < total_steps;) {
     long next = std::min({total_steps, next_multiple(s, opt.check_every), next_multiple(s, snap_every),
                           next_multiple(s, sample_every), next_multiple(s, stop_every)});
     if (opt.progress) next = std::min(next, next_multiple(s, 100));
@@ -82,12 +101,23 @@ RunSummary run_scene(const Scene& scene, const std::filesystem::path& out_dir, c
     fired = rest.check(world, s);
     emit(s, fired || s == total_steps);
     if (fired) break;
+    if (s < total_steps && ((ckpt_every > 0 && s - ckpt_step >= ckpt_every) ||
+                            (opt.checkpoint_wall_s > 0 &&
+                             std::chrono::duration<double>(Clock::now() - ckpt_wall).count() >= opt.checkpoint_wall_s))) {
+      const auto c0 = Clock::now();
+      write_checkpoint(ckpt, out, world, rest, wall_before + std::chrono::duration<double>(c0 - t0).count(),
+                       opt.resume_with);
+      world.profile().seconds[Profile::output] += std::chrono::duration<double>(Clock::now() - c0).count();
+      ckpt_step = s;
+      ckpt_wall = Clock::now();
+      ++r.checkpoints;
+    }
     if (opt.progress && s % 100 == 0) {
       const auto now = Clock::now();
       if (std::chrono::duration<double>(now - last_progress).count() >= opt.progress_every_s) {
         last_progress = now;
         const double el = std::chrono::duration<double>(now - t0).count();
-        const double sps = static_cast<double>(s) / el;
+        const double sps = static_cast<double>(s - s0) / el;
         std::fprintf(stderr, "\rt = %.4g / %.4g s  %.0f steps/s  ETA %.0f s   ", world.time(), scene.end_time, sps,
                      static_cast<double>(total_steps - s) / sps);
         std::fflush(stderr);
@@ -102,12 +132,15 @@ RunSummary run_scene(const Scene& scene, const std::filesystem::path& out_dir, c
   r.stop.time = world.time();
   r.stop.last = census(world, rule);
   out.stop_outcome(r.stop, rule);
-  r.wall_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  r.wall_seconds = wall_before + std::chrono::duration<double>(Clock::now() - t0).count();
   r.steps = world.steps();
   r.steps_per_second = r.wall_seconds > 0 ? static_cast<double>(r.steps) / r.wall_seconds : 0.0;
   const std::string xmf = out.finish(world, r.wall_seconds, r.threads);
   staged.write_text(r.xmf, xmf);
   staged.commit();
+  // The result is out: its checkpoint is of no more use (a kill before this line resumes and publishes again).
+  std::error_code ec;
+  std::filesystem::remove(ckpt, ec);
   r.outflow = scene.config.on_exit == ExitRule::remove;
   r.escaped_count = world.escaped().size();
   r.escaped_mass = world.escaped_mass();
@@ -116,6 +149,21 @@ RunSummary run_scene(const Scene& scene, const std::filesystem::path& out_dir, c
   r.profile = world.profile();
   r.profile_table = format_profile(r.profile, r.steps, r.wall_seconds, world.particles().size());
   return r;
+}
+
+}  // namespace
+
+RunSummary run_scene(const Scene& scene, const std::filesystem::path& out_dir, const RunOptions& opt) {
+  try {
+    return run_checked(scene, out_dir, opt);
+  } catch (const RuntimeFailure&) {
+    // A blow-up is deterministic: resuming the same scene would meet it again, and another scene may not
+    // resume it. Its checkpoint would only stop the next fresh run.
+    const std::string stem = opt.stem.empty() ? std::filesystem::path(scene.path).stem().string() : opt.stem;
+    std::error_code ec;
+    std::filesystem::remove(checkpoint_path(out_dir, stem), ec);
+    throw;
+  }
 }
 
 }  // namespace pastemix::model

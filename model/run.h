@@ -18,6 +18,12 @@ struct RunOptions {
   double progress_every_s = 2.0;  // wall seconds between progress lines
   int check_every = 50;        // steps between full diagnostics (NaN and domain are checked every step)
   std::string stem;            // output file stem; empty: the scene file's stem (realizations: NAME_rK)
+  // Checkpoints (model/checkpoint.h), OUT/STEM.checkpoint.h5: every [output] checkpoint_interval of
+  // simulated time and/or every checkpoint_wall_s of wall-clock time (0: not by wall time); removed once
+  // the result is published. resume: continue from it. resume_with: the command that would, stored in it.
+  double checkpoint_wall_s = 0.0;
+  bool resume = false;
+  std::string resume_with;
 };
 
 struct RunSummary {
@@ -37,9 +43,12 @@ struct RunSummary {
   // How the run ended: by the [stop] rule at rest, or at end_time (a warning when the rule asked for rest).
   StopOutcome stop;
   bool failed_to_rest() const { return stop.rule_at_rest && !stop.fired; }
+  long resumed_at_step = -1;   // --resume: the checkpoint's step (-1: a run from t = 0)
+  long checkpoints = 0;        // checkpoints written by this run
 };
 
-// Output files are named after options.stem, else the scene file's stem. On a RuntimeFailure nothing is left behind.
+// Output files are named after options.stem, else the scene file's stem. On a RuntimeFailure nothing is left
+// behind but the last checkpoint (if any): the run can be resumed from it with a smaller step, say.
 RunSummary run_scene(const Scene& scene, const std::filesystem::path& out_dir, const RunOptions& options = {});
 
 std::string format_profile(const Profile& p, long steps, double wall_seconds, std::size_t particles);

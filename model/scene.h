@@ -28,6 +28,7 @@
 //   [output]                       # optional
 //   interval = 0.01                # s between particle snapshots (default end_time / 20)
 //   energy_interval = 0.001        # s between energy / contact-count samples (default interval)
+//   checkpoint_interval = 60       # s of simulated time between restart files (model/checkpoint.h; default none)
 //   [[material]]
 //   name = "rock"  density = 2760  youngs_modulus = 4.68e7  poisson_ratio = 0.19
 //   [[interaction]]                # one per pair of materials that can touch (walls included)
@@ -92,6 +93,7 @@ struct Scene {
   double end_time = 0.0;      // s
   double output_interval = 0.0;  // s
   double energy_interval = 0.0;  // s
+  double checkpoint_interval = 0.0;  // s of simulated time between checkpoints (model/checkpoint.h); 0: none
   StopRule stop;              // [stop]: end at rest (model/stop_rule.h); end_time is then the limit
   Plan plan;
   WorldConfig config;

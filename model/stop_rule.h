@@ -27,6 +27,7 @@ class Params;
 namespace pastemix::model {
 
 class World;
+struct CheckpointAccess;
 
 struct StopRule {
   bool at_rest = false;        // false: the run ends at end_time
@@ -62,6 +63,7 @@ class RestMonitor {
   bool fired() const { return fired_; }
 
  private:
+  friend struct CheckpointAccess;  // model/checkpoint.cpp
   StopRule rule_;
   double dt_;
   long every_;

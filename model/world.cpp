@@ -217,8 +217,10 @@ long World::passes(long n, double h, bool initial, double& moved2) {
             const auto c1 = Clock::now();
             double d2 = 0.0;
             long bad = std::numeric_limits<long>::max();
-            // The closing half kick (and the next opening half kick and drift) of particle a.
-            auto close_kick = [&](long a) {
+            // The closing half kick (and the next opening half kick and drift) of particle a. h and roll by
+            // value: clang (the fuzz build) rejects their implicit capture inside std::visit's lambda and the
+            // OpenMP region ("reference to local variable declared in enclosing function").
+            auto close_kick = [&, h, roll](long a) {
               if (then == Then::kick) {
                 kick_one(a, h, rot, roll);
                 return;

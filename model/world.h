@@ -17,6 +17,8 @@
 
 namespace pastemix::model {
 
+struct CheckpointAccess;
+
 // Wall-clock seconds spent per stage, as seen by thread 0 (the order is the order of the step):
 // kick_drift = the first half kick and drift of a batch of steps (World::advance; the later ones are fused
 // into walls_kick); neighbor = list rebuilds; contact_forces = the pair pass; walls_kick = the per-particle
@@ -108,6 +110,7 @@ class World {
   double escaped_mass() const { return escaped_mass_; }  // kg
 
  private:
+  friend struct CheckpointAccess;  // model/checkpoint.cpp: saves and restores every member of the state
   void check_particles(bool domain) const;
   [[noreturn]] void fail(std::size_t a, const std::string& cause) const;
   // A drift flagged a particle (bad_index_): check() with on_exit = stop; with remove, the health checks

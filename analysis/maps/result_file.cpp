@@ -92,6 +92,13 @@ ResultSnapshot read_result(const fs::path& path, const ResultOverrides& over) {
   if (!fs::exists(path)) throw InputError(file, 0, "", "no such file");
   if (!fs::is_regular_file(path)) throw InputError(file, 0, "", "not a regular file");
   H5Reader h5(path);
+  // A checkpoint (model/checkpoint.h) holds the snapshots so far of a run that did not finish: its last
+  // one is not the final state a map is about.
+  if (h5.exists("/checkpoint"))
+    throw InputError(file, 0, "", fmt::format("the checkpoint of an interrupted run (stopped at t = {:.6g} s), not a "
+                                              "result: continue it with `{}`",
+                                              h5.attribute_double("/checkpoint", "time_s"),
+                                              h5.attribute_string("/checkpoint", "resume_with")));
   ResultSnapshot r;
   r.path = file;
   r.seed = h5.has_attribute("/", "seed") ? h5.attribute_int("/", "seed") : -1;

@@ -44,6 +44,10 @@
 #include "model/laws/registry.h"
 #include "model/particles.h"
 
+namespace pastemix::model {
+struct CheckpointAccess;
+}
+
 namespace pastemix::model::fluid {
 
 struct FluidRegion {
@@ -109,6 +113,7 @@ class FluidField {
   const ClusterStats& cluster_stats() const { return stats_; }
 
  private:
+  friend struct pastemix::model::CheckpointAccess;  // model/checkpoint.cpp: saves and restores the state
   std::vector<FluidRegion> regions_;
   std::vector<double> surface_;  // m, current free surface per region
   std::vector<int> region_of_;   // per particle, -1 outside every region

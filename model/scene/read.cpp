@@ -76,6 +76,7 @@ void read_output(const Params& root, double r_min, Scene& s) {
   if (auto out = root.optional_table("output")) {
     s.output_interval = out->number_or("interval", s.output_interval, Range::positive);
     s.energy_interval = out->number_or("energy_interval", 0.0, Range::positive);
+    s.checkpoint_interval = out->number_or("checkpoint_interval", 0.0, Range::positive);
   }
   if (s.energy_interval == 0.0) s.energy_interval = s.output_interval;
   s.stop = parse_stop_rule(root);
