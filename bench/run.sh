@@ -143,6 +143,9 @@ BASELINE="${PASTEMIX_BASELINE:-}"
 if [[ -n "$BASELINE" && ! -x "$BASELINE" ]]; then
   echo "run.sh: PASTEMIX_BASELINE=$BASELINE is not an executable" >&2; exit 2
 fi
+# The runs start inside their work folders: a relative path given in the environment must not break them.
+[[ $LIGGGHTS_ONLY -eq 1 ]] || PASTEMIX="$(realpath "$PASTEMIX")"
+[[ -z "$BASELINE" ]] || BASELINE="$(realpath "$BASELINE")"
 run_pastemix() {  # rolling scene threads tag [toml]: pastemix, then the baseline build if there is one
   run_engine pastemix "$PASTEMIX" "$@"
   [[ -z "$BASELINE" ]] || run_engine baseline "$BASELINE" "$@"
