@@ -116,6 +116,11 @@ struct CheckpointAccess {
   static void fluid_state(IO& io, F& f) {
     io(f.surface_), io(f.region_of_), io(f.v_sub_), io(f.stale_), io(f.candidates_), io(f.members_);
     io(f.surface_at_refresh_), io(f.factor_), io(f.factored_), io(f.since_clusters_), io(f.stats_);
+    // The per-particle constants of the kick and the clusters' change test (FluidField, issue 19's fluid-pass
+    // speed): without them a resumed run indexed empty arrays (phi_ is filled only where update() runs anew).
+    io(f.phi_), io(f.y_), io(f.d0_), io(f.rest_region_);
+    io(f.pairs_version_), io(f.clustered_version_), io(f.clustered_members_), io(f.clustered_x_);
+    io(f.clustered_surface_);
   }
   template <class IO, class R>
   static void rest_state(IO& io, R& r) {
