@@ -76,10 +76,15 @@ void register_rheology(CLI::App* cal) {
   r->add_flag("--no-store", c->no_store, "write the record but leave the store as it is");
   r->add_option("--dataset", c->dataset, "dataset for the store rewrite (default: the store's [reduce] dataset)");
   r->add_flag("--quiet", c->o.quiet, "no per-run lines");
+  r->add_option("--checkpoint-every", c->o.checkpoint_wall_s,
+                "wall-clock s between checkpoints of a run in progress; a rerun continues it (default 300, 0: none)")
+      ->check(CLI::NonNegativeNumber);
   r->callback([c] {
     auto& o = c->o;
     const std::string scene = c->scene.empty() ? fmt::format("datasets/scenes/mixing_case{}.toml", o.case_id) : c->scene;
     o.out = c->out.empty() ? fmt::format("out/calibrate/rheology_case{}", o.case_id) : c->out;
+    o.resume_with = fmt::format("the same `pastemix calibrate rheology --case {} --out {}` command", o.case_id,
+                                o.out.string());
     if (!c->target.empty()) o.target_layers = std::array<double, 3>{c->target[0], c->target[1], c->target[2]};
     if (!(c->layer_thickness > 0.0)) throw InputError("--layer-thickness", 0, "", "must be positive (m)");
     o.layout.layer_thickness = c->layer_thickness;
@@ -106,6 +111,7 @@ void register_study_commands(CLI::App& app) {
     study::SweepOptions o;
     std::vector<std::string> sets;
     std::string overrides;
+    bool no_cache = false;
   };
   auto opts = std::make_shared<Opts>();
   std::string qoi_help = "quantity of interest:";
@@ -127,10 +133,17 @@ void register_study_commands(CLI::App& app) {
   s->add_flag("--fixed-dt", opts->o.fixed_dt, "psd_cut: keep the scene's time step (default: dt follows the smallest d_min)");
   s->add_option("--save", opts->o.save, "folder for each run's final state (<vary>_<value>_seed<S>.h5 + .xmf)");
   s->add_option("--jobs", opts->o.jobs, "runs at once, one thread each (default 1: one run with the OpenMP threads)");
+  s->add_option("--runs", opts->o.runs, "folder of finished-run records, read back by a rerun (default <out>/runs)");
+  s->add_flag("--no-cache", opts->no_cache, "keep no run records and read none: every run is done");
   s->callback([opts] {
+    if (opts->o.runs.empty() && !opts->no_cache) opts->o.runs = opts->o.out / "runs";
+    if (opts->no_cache) opts->o.runs.clear();
+    opts->o.engine = lab::software_version();
     const model::SceneDoc base = model::scene_with_overrides(opts->scene, opts->overrides, opts->sets);
     const study::SweepResult r = study::sweep(base, opts->o);
     fmt::print("{}", r.table);
+    if (!opts->o.runs.empty())
+      fmt::print("runs: {} done now, {} read back from {}\n", r.executed, r.read_back, opts->o.runs.string());
     study::write_outputs(r, opts->o);
     fmt::print("wrote {0}/sweep.csv, {0}/sweep.png{1}\n", opts->o.out.string(),
                r.override_text.empty() ? "" : fmt::format(", {}/chosen_overrides.toml", opts->o.out.string()));
@@ -143,6 +156,8 @@ void register_study_commands(CLI::App& app) {
     int seeds = 1, max_evaluations = 8;
     std::vector<std::string> sets;
     std::string overrides;
+    std::string out = "out/calibrate/rolling_resistance";
+    bool no_cache = false;
   };
   auto c = std::make_shared<CalOpts>();
   CLI::App* cal = group_subcommand(app, "calibrate", "calibrate an unmeasurable parameter against lab tests");
@@ -157,17 +172,26 @@ void register_study_commands(CLI::App& app) {
   rr->add_option("--max-evaluations", c->max_evaluations, "default 8");
   rr->add_option("--overrides", c->overrides, "file of key.path = value lines, applied before --set");
   rr->add_option("--set", c->sets, "scene override key.path=value");
+  rr->add_option("--out", c->out, "folder whose runs/ keeps every finished pile, read back by a rerun "
+                                  "(default out/calibrate/rolling_resistance)");
+  rr->add_flag("--no-cache", c->no_cache, "keep no run records and read none: every pile is run");
   rr->callback([c] {
     const model::SceneDoc base = model::scene_with_overrides(c->scene, c->overrides, c->sets);
     const long seed0 = base.has("seed") ? std::stol(base.get("seed")) : 1;
+    const study::RunCache cache(c->no_cache ? std::filesystem::path{} : std::filesystem::path(c->out) / "runs");
+    const std::string engine = lab::software_version();
     auto f = [&](double mu) {
       std::vector<double> angles;
       for (int k = 0; k < c->seeds; ++k) {
         model::SceneDoc d = study::with_rolling_resistance(base, mu);
         if (c->seeds > 1) d.set("seed", std::to_string(seed0 + k));
-        const auto r = study::run_once(d, "repose_angle");
+        bool on_disk = false;
+        const auto r = study::cached_run_once(d, "repose_angle", cache,
+                                              fmt::format("rolling-resistance mu_r = {:.10g} seed {}", mu, seed0 + k),
+                                              engine, on_disk);
         angles.push_back(r.qoi);
-        fmt::print(stderr, "  mu_r = {:.4f} seed {}: {:.2f} deg ({:.1f} s)\n", mu, seed0 + k, r.qoi, r.wall_s);
+        fmt::print(stderr, "  mu_r = {:.4f} seed {}: {:.2f} deg ({:.1f} s){}\n", mu, seed0 + k, r.qoi, r.wall_s,
+                   on_disk ? " (on disk)" : "");
       }
       const auto st = summarize(angles);
       return study::Evaluation{mu, st.mean, c->seeds > 1 ? st.sd : 0.0};

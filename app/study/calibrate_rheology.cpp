@@ -18,6 +18,7 @@
 #include "base/error.h"
 #include "base/stats.h"
 #include "model/output.h"
+#include "model/checkpoint.h"
 #include "model/run.h"
 
 namespace pastemix::app::study {
@@ -102,6 +103,10 @@ void run_tasks(std::vector<CalPoint>& pts, std::vector<Task>& tasks, const Rheol
           model::RunOptions ro;
           ro.progress = false;
           ro.stem = sr.hash;
+          ro.checkpoint_wall_s = o.checkpoint_wall_s;
+          ro.resume_with = o.resume_with;
+          // A run killed part-way left its checkpoint: continue it rather than start again.
+          ro.resume = sr.resumed = fs::exists(model::checkpoint_path(runs, sr.hash));
           model::run_scene(t.doc.load(), runs, ro);
           ++ran;
         }
@@ -115,7 +120,8 @@ void run_tasks(std::vector<CalPoint>& pts, std::vector<Task>& tasks, const Rheol
         fmt::print(stderr, "  shape {:.6g} seed {}: {}\n", p.shape, sr.seed,
                    !failure.empty() ? "FAILED: " + failure
                                     : fmt::format("layers {:.2f} / {:.2f} / {:.2f} g ({})", 1e3 * sr.layers[0],
-                                                  1e3 * sr.layers[1], 1e3 * sr.layers[2], sr.cached ? "on disk" : "ran"));
+                                                  1e3 * sr.layers[1], 1e3 * sr.layers[2],
+                                                  sr.cached ? "on disk" : sr.resumed ? "resumed from its checkpoint" : "ran"));
     }
   };
   std::vector<std::thread> pool;

@@ -53,6 +53,10 @@ struct RheologyCalOptions {
   analysis::BlockLayout layout;              // default: the chapter-3 grid
   double eta_factor = 1.0;                   // sensitivity: eta_B x this at every point
   bool quiet = false;
+  // A run in progress writes runs/<hash>.checkpoint.h5 every this many wall-clock seconds (0: never), and
+  // a rerun after a kill continues it from there (bit-identical to an unbroken run: model/checkpoint.h).
+  double checkpoint_wall_s = 300.0;
+  std::string resume_with;                   // the command that resumes the calibration (stored in each checkpoint)
 };
 
 // One (point, seed) run.
@@ -62,6 +66,7 @@ struct SeedRun {
   std::array<double, 3> layers{};  // kg
   double J = 0.0;
   bool cached = false;
+  bool resumed = false;            // continued from its checkpoint
 };
 
 struct CalPoint {

@@ -16,6 +16,7 @@
 #include <fmt/format.h>
 
 #include "app/study/qoi.h"
+#include "app/study/run_cache.h"
 #include "base/error.h"
 #include "base/staged_output.h"
 #include "model/output.h"
@@ -147,6 +148,31 @@ RunCost run_once(const model::SceneDoc& doc, const std::string& qoi_name, const 
           s.particles.size()};
 }
 
+RunCost cached_run_once(const model::SceneDoc& doc, const std::string& qoi, const RunCache& cache,
+                        const std::string& what, const std::string& engine, bool& on_disk,
+                        const std::filesystem::path& save_h5) {
+  const std::string key = run_key(doc, qoi);
+  on_disk = false;
+  // With a saved state the file is part of the result: a run whose file is gone is done again.
+  if (auto rec = cache.find(key); rec && (save_h5.empty() || rec->failed || std::filesystem::exists(save_h5))) {
+    on_disk = true;
+    if (rec->failed) throw RuntimeFailure(rec->failure);
+    return RunCost{rec->qoi, rec->wall_s, rec->work, rec->particles};
+  }
+  RunRecord rec;
+  rec.engine = engine;
+  try {
+    const RunCost c = run_once(doc, qoi, save_h5);
+    rec.qoi = c.qoi, rec.wall_s = c.wall_s, rec.work = c.work, rec.particles = c.particles;
+    cache.store(key, rec, doc.path(), what);
+    return c;
+  } catch (const RuntimeFailure& e) {
+    rec.failed = true, rec.failure = e.what();
+    cache.store(key, rec, doc.path(), what);
+    throw;
+  }
+}
+
 SweepResult sweep(const model::SceneDoc& base, const SweepOptions& o) {
   find_qoi(o.qoi);
   if (o.seeds < 1) throw InputError("", 0, "--seeds", "must be >= 1");
@@ -176,28 +202,36 @@ SweepResult sweep(const model::SceneDoc& base, const SweepOptions& o) {
       tasks.push_back({k, seed0 + s, std::move(ds), std::nullopt, {}});
     }
   }
+  const RunCache cache(o.runs);
   std::atomic<std::size_t> next{0};
+  std::atomic<int> executed{0}, read_back{0};
   std::mutex print;
   auto worker = [&] {
     if (o.jobs > 1) omp_set_num_threads(1);
     for (std::size_t i; (i = next++) < tasks.size();) {
       Task& t = tasks[i];
+      const std::filesystem::path save =
+          o.save.empty() ? std::filesystem::path{}
+                         : o.save / fmt::format("{}_{:.6g}_seed{}.h5", o.vary, values[t.point], t.seed);
+      bool on_disk = false;
       try {
-        const std::filesystem::path save =
-            o.save.empty() ? std::filesystem::path{}
-                           : o.save / fmt::format("{}_{:.6g}_seed{}.h5", o.vary, values[t.point], t.seed);
-        t.cost = run_once(t.doc, o.qoi, save);
+        t.cost = cached_run_once(t.doc, o.qoi, cache,
+                                 fmt::format("sweep --vary {} = {:.10g} seed {} --qoi {}", o.vary, values[t.point],
+                                             t.seed, o.qoi),
+                                 o.engine, on_disk, save);
       } catch (const RuntimeFailure& e) {
         t.failure = e.what();
       }
+      ++(on_disk ? read_back : executed);
       if (o.quiet) continue;
       std::lock_guard<std::mutex> lock(print);
+      const char* from = on_disk ? " (on disk)" : "";
       if (t.cost)
-        fmt::print(stderr, "  {} = {:.4g} seed {}: {} = {:.6g} ({} particles, {:.0f} steps, {:.2f} s)\n", o.vary,
+        fmt::print(stderr, "  {} = {:.4g} seed {}: {} = {:.6g} ({} particles, {:.0f} steps, {:.2f} s){}\n", o.vary,
                    values[t.point], t.seed, o.qoi, t.cost->qoi, t.cost->particles,
-                   t.cost->work / static_cast<double>(t.cost->particles), t.cost->wall_s);
+                   t.cost->work / static_cast<double>(t.cost->particles), t.cost->wall_s, from);
       else
-        fmt::print(stderr, "  {} = {:.4g} seed {}: FAILED: {}\n", o.vary, values[t.point], t.seed, t.failure);
+        fmt::print(stderr, "  {} = {:.4g} seed {}: FAILED: {}{}\n", o.vary, values[t.point], t.seed, t.failure, from);
     }
   };
   {
@@ -206,6 +240,7 @@ SweepResult sweep(const model::SceneDoc& base, const SweepOptions& o) {
     worker();
     for (auto& th : pool) th.join();
   }
+  r.executed = executed, r.read_back = read_back;
   std::vector<double> kept_dt;
   for (std::size_t k = 0; k < values.size(); ++k) {
     std::vector<double> q, wall;

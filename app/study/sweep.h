@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "app/study/ladder.h"
+#include "app/study/run_cache.h"
 #include "model/scene_doc.h"
 
 namespace pastemix::app::study {
@@ -43,6 +44,10 @@ struct SweepOptions {
   bool fixed_dt = false;          // psd_cut: keep the scene's time step at every cut
   std::filesystem::path save;     // non-empty: each run's final state as <save>/<vary>_<value>_seed<S>.h5/.xmf
   int jobs = 1;                   // runs at once (each one thread when > 1)
+  // Finished runs are kept here (app/study/run_cache.h) and read back by a rerun: a killed or repeated
+  // sweep recomputes no finished (value, seed). Empty: nothing kept (the command's default is <out>/runs).
+  std::filesystem::path runs;
+  std::string engine;             // software version, written into each run record (provenance)
 };
 
 // A ladder point at which at least one run failed (left out of the reference and the choice).
@@ -61,6 +66,7 @@ struct SweepResult {
   Choice choice;
   std::string override_text;      // the chosen setting as override lines
   std::string table;              // the printed speed-vs-error table
+  int executed = 0, read_back = 0;  // runs done now / read back from the run records
 };
 
 // Applies the ladder value to a copy of the scene (all the TOML edits live here).
@@ -80,5 +86,12 @@ RunCost run_once(const model::SceneDoc& doc, const std::string& qoi, const std::
 SweepResult sweep(const model::SceneDoc& base, const SweepOptions& o);
 // Writes <out>/sweep.csv, <out>/chosen_overrides.toml, <out>/sweep.png (PNG only if python works).
 void write_outputs(const SweepResult& r, const SweepOptions& o);
+
+// run_once through a run cache (app/study/run_cache.h): a recorded run is read back (on_disk = true), a
+// recorded failure is thrown again as the RuntimeFailure it was; a new run (or failure) is recorded, with
+// `what` (e.g. "mu_r = 0.3 seed 2") and `engine` (the software version) in the record.
+RunCost cached_run_once(const model::SceneDoc& doc, const std::string& qoi, const RunCache& cache,
+                        const std::string& what, const std::string& engine, bool& on_disk,
+                        const std::filesystem::path& save_h5 = {});
 
 }  // namespace pastemix::app::study

@@ -72,14 +72,14 @@ void require_unique_ids(const CsvTable& table, std::string_view column) {
   }
 }
 
-void check_plausible(const CsvTable& table, const CsvTable::Row& row, std::string_view column, double si_value,
+void check_plausible(const CsvTable& table, const CsvTable::Row& row, std::string_view column, double value_si,
                      const Plausible& bounds, const ColumnUnits& units) {
-  if (!units.plausibility_checks() || (si_value >= bounds.lo && si_value <= bounds.hi)) return;
+  if (!units.plausibility_checks() || (value_si >= bounds.lo && value_si <= bounds.hi)) return;
   table.fail(row, column,
              fmt::format("{} = {:g} is not plausible as {} (expected {:g} to {:g}); check the unit of the column "
                          "(the manifest's [.units]). If the value is right, set allow_implausible_values = true in "
                          "this input's manifest table",
-                         shown(table.text(row, column)), si_value, bounds.what, bounds.lo, bounds.hi));
+                         shown(table.text(row, column)), value_si, bounds.what, bounds.lo, bounds.hi));
 }
 
 double rounding_tolerance(std::string_view cell) {

@@ -67,8 +67,9 @@ struct Plausible {
 };
 inline constexpr Plausible plausible_density{100.0, 20000.0, "a density (kg/m3)"};
 inline constexpr Plausible plausible_paste_yield_stress{0.0, 10000.0, "a paste's yield stress (Pa)"};
-// InputError at the row (naming the value, the bounds and the manifest switch) if `si_value` is outside.
-void check_plausible(const CsvTable& table, const CsvTable::Row& row, std::string_view column, double si_value,
+// InputError at the row (naming the value, the bounds and the manifest switch) if `value_si` is outside.
+// (Not `si_value`: <signal.h> defines that name as a macro.)
+void check_plausible(const CsvTable& table, const CsvTable::Row& row, std::string_view column, double value_si,
                      const Plausible& bounds, const ColumnUnits& units);
 
 // Half a unit of the last printed digit of `cell` ("0.612" -> 0.0005, "136" -> 0.5): how far a printed value

@@ -121,6 +121,11 @@ double fill_factory(const Params& f, int mat, std::uint64_t seed, Scene& s) {
   const FillRegion region = region_of(f, shape, s, &container);
   std::vector<double> radii = diameters_from(f, s.materials[static_cast<std::size_t>(mat)].density, seed);
   for (double& r : radii) r *= 0.5;
+  // A mass below one sphere of the PSD (or a d_max of astronomical size: found by fuzzing) draws nothing.
+  if (radii.empty())
+    f.fail("mass", fmt::format("{:g} kg makes not one sphere of this PSD (d up to {:g} m): raise the mass or check "
+                               "the [[factory.psd]] sizes (m)",
+                               f.number("mass"), f.tables("psd").back().number("d_max")));
   // A wall crossing the region (e.g. a plate across the fill box) is a scene error. A wall surface point
   // deeper inside the region than the smallest particle radius means the wall passes through it; walls on
   // the region's boundary (a box filled up to its sides) do not count.

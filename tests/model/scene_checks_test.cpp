@@ -152,3 +152,19 @@ TEST_CASE("scene checks: `pastemix run --threads 0` or a negative count is an in
   }
   std::filesystem::remove_all(dir);
 }
+
+TEST_CASE("scene checks: a factory mass below one sphere of its PSD is an input error, not a crash (fuzz find)") {
+  // fuzz/corpus/scene regression (scene-crash-60ac6f66): d_max = 3.0e43 m drew no sphere at all, and the
+  // smallest radius was then read from an empty list (undefined behaviour under UBSan).
+  const std::string text = kBase + "[[factory]]\nmaterial = \"rock\"\nmass = 0.002\nshape = \"box\"\n"
+                                   "min = [-0.1, -0.1, 0.1]\nmax = [0.1, 0.1, 0.3]\n"
+                                   "[[factory.psd]]\nd_min = 2.5e-3\nd_max = 3.0e43\nfraction = 1.0\n";
+  const std::string e = error_of(text);
+  INFO(e);
+  CHECK(e.find("bad.toml:19: key 'mass': 0.002 kg makes not one sphere of this PSD") == 0);
+  // A mass too small for one sphere of an ordinary PSD: the same error.
+  const std::string small = error_of(kBase + "[[factory]]\nmaterial = \"rock\"\nmass = 1e-9\nshape = \"box\"\n"
+                                             "min = [-0.1, -0.1, 0.1]\nmax = [0.1, 0.1, 0.3]\n"
+                                             "[[factory.psd]]\nd_min = 2e-3\nd_max = 3e-3\nfraction = 1.0\n");
+  CHECK(small.find("key 'mass': 1e-09 kg makes not one sphere") != std::string::npos);
+}

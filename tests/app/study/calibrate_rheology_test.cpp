@@ -4,7 +4,12 @@
 // record into the store, and bad inputs are errors naming what is wrong.
 #include "app/study/calibrate_rheology.h"
 
+#include <signal.h>
+#include <sys/wait.h>
 #include <unistd.h>
+
+#include <chrono>
+#include <thread>
 
 #include <cmath>
 #include <filesystem>
@@ -147,6 +152,51 @@ TEST_CASE("calibrate rheology: bad inputs are errors naming what is wrong") {
   RheologyCalOptions fam = o;
   fam.family = "power";
   CHECK(error_of(tiny(store), fam).find("unknown family") != std::string::npos);
+}
+
+TEST_CASE("calibrate rheology CLI: a run killed part-way continues from its checkpoint, with the same result") {
+  const std::string store = write_store();
+  auto args_for = [&](const std::string& out, const std::string& every) {
+    return fmt::format(
+        "calibrate rheology --case 2 --scene '{}' --set fluid.0.rheology_from='\"{}\"' --params '{}' --seeds 1 "
+        "--jobs 1 --points 3 --refine 0 --values 0.45 --layer-thickness 0.005 --target-layers 0.002,0.004,0.002 "
+        "--out '{}' --no-store --checkpoint-every {}",
+        test::source_path("tests/app/study/data/rheology_tiny.toml"), store, store, out, every);
+  };
+  const fs::path out = kDir / "killed";
+  fs::create_directories(out / "runs");
+  // A checkpoint at every stop of the run loop (1e-9 s of wall clock): the kill finds one to resume.
+  const std::string killed = args_for(out.string(), "1e-9");
+  const pid_t pid = fork();
+  if (pid == 0) {
+    execl("/bin/sh", "sh", "-c", (std::string("exec '") + PASTEMIX_BINARY + "' " + killed + " >/dev/null 2>&1").c_str(),
+          static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  auto has_checkpoint = [&] {
+    for (const auto& e : fs::directory_iterator(out / "runs"))
+      if (e.path().string().ends_with(".checkpoint.h5")) return true;
+    return false;
+  };
+  const auto t0 = std::chrono::steady_clock::now();
+  while (!has_checkpoint() && std::chrono::steady_clock::now() - t0 < std::chrono::seconds(60))
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));  // a few more checkpoints: not always the first
+  kill(pid, SIGKILL);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  REQUIRE_MESSAGE(has_checkpoint(), "no checkpoint was written before the kill");
+  const auto resumed = test::run_pastemix(killed);
+  INFO(resumed.output);
+  REQUIRE((resumed.exit_code == 0 || resumed.exit_code == 3));
+  CHECK(resumed.output.find("resumed from its checkpoint") != std::string::npos);
+  CHECK_FALSE(has_checkpoint());  // published: the checkpoint is gone
+  const auto whole = test::run_pastemix(args_for((kDir / "whole").string(), "0"));
+  REQUIRE(whole.exit_code == resumed.exit_code);
+  // The per-run line (layer masses to 0.01 g) and the result file: the same as a run never stopped.
+  auto layers_line = [](const std::string& o) { return o.substr(o.find("shape 0.45 seed"), o.find(")", o.find("shape 0.45 seed")) - o.find("shape 0.45 seed")); };
+  CHECK(layers_line(resumed.output).substr(0, layers_line(resumed.output).find("(")) ==
+        layers_line(whole.output).substr(0, layers_line(whole.output).find("(")));
 }
 
 TEST_CASE("calibrate rheology CLI: a smoke run on the tiny scene writes table, PNG, record and the store") {
