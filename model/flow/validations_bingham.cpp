@@ -261,7 +261,8 @@ std::vector<double> quarter_cylinder(const Grid& g) {
 
 }  // namespace
 
-SlumpResult bingham_slump(double cell, double m, double tau_y, double rho, double eta_B, double max_time) {
+SlumpResult bingham_slump(double cell, double m, double tau_y, double rho, double eta_B, double max_time,
+                          const FlowProgress& progress) {
   SlumpResult r;
   r.cell = cell;
   r.m = m;
@@ -281,17 +282,20 @@ SlumpResult bingham_slump(double cell, double m, double tau_y, double rho, doubl
   const double v0 = s.paste_volume();
   r.slump_pashias = pashias_boger_slump(tau_y, rho, kMouldH);
   r.spread_roussel = 2.0 * roussel_coussot_radius(tau_y, rho, 4.0 * v0);  // the whole sample's volume
-  // At rest once no paste cell moves faster than kRestSpeed, after the first 0.1 s (it starts at rest).
+  // At rest once the paste's RMS speed is below kRestSpeed (bingham.h), after the first 0.1 s (it starts at rest).
   while (s.time() < max_time) {
     s.step(s.next_time_step());
     r.max_divergence = std::max(r.max_divergence, relative_divergence(s.last()));
+    if (progress) progress(s);
     if (s.time() > 0.1 && at_rest(s)) {
       r.at_rest = true;
       break;
     }
   }
   r.time = s.time();
-  r.final_speed = paste_speed(s);
+  r.final_speed = paste_rms_speed(s);
+  r.final_max_speed = paste_speed(s);
+  r.final_air_speed = s.max_speed();
   double column = 0.0, floor = 0.0;
   for (int k = 0; k < g.n[2]; ++k) column += s.alpha()[g.cell(0, 0, k)] * cell;
   for (int j = 0; j < g.n[1]; ++j)
