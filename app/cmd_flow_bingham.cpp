@@ -114,9 +114,10 @@ class SlumpMonitor {
     if (s.time() < next_) return;
     next_ = s.time() + every_;
     fmt::print("    t {:.3f} s: {} steps (dt {:.2e} s), CG per solve pressure {:.1f} (max {}), viscous {:.1f} (max {}); "
-               "max speed {:.3e} m/s, paste: max {:.3e} m/s, RMS {:.3e} m/s; CPU {:.1f} s\n",
+               "max speed {:.3e} m/s, paste: max {:.3e} m/s, RMS {:.3e} m/s; slump {:.1f} mm, spread {:.1f} mm; CPU {:.1f} s\n",
                s.time(), steps_, st.dt, static_cast<double>(pressure_) / static_cast<double>(steps_), max_pressure_,
                static_cast<double>(viscous_) / static_cast<double>(steps_), max_viscous_, s.max_speed(), paste_speed(s), paste_rms_speed(s),
+               1e3 * slump_shape(s).slump, 1e3 * slump_shape(s).spread,
                static_cast<double>(std::clock() - cpu0_) / CLOCKS_PER_SEC);
     std::fflush(stdout);
     steps_ = 0;
@@ -146,10 +147,10 @@ void run_slump_at(double cell, double m, const StorePaste& p, const SlumpOptions
   if (o.progress > 0) progress = SlumpMonitor(o.progress);
   const SlumpResult r =
       bingham_slump(cell, m, p.yield_stress, p.density, o.eta_scale * p.plastic_viscosity, o.max_time, progress);
-  fmt::print("  {:g} mm cells, m = {:g} s: {} at t = {:.3f} s (paste RMS speed {:.2e} m/s, rest below {:g}; fastest paste "
-             "cell {:.2e} m/s, fastest face {:.2e} m/s)\n",
-             1e3 * cell, m, r.at_rest ? "at rest" : "NOT at rest", r.time, r.final_speed, kRestSpeed, r.final_max_speed,
-             r.final_air_speed);
+  fmt::print("  {:g} mm cells, m = {:g} s: {} at t = {:.3f} s (held to {:.3f} s; at the end: paste RMS speed {:.2e} m/s, "
+             "rest below {:g}; fastest paste cell {:.2e} m/s, fastest face {:.2e} m/s)\n",
+             1e3 * cell, m, r.at_rest ? "at rest" : "NOT at rest", r.time, r.end_time, r.final_speed, kRestSpeed,
+             r.final_max_speed, r.final_air_speed);
   fmt::print("    slump {:.1f} mm, Pashias-Boger {:.1f} mm: {:+.1f} % (bound 10 % at 5 mm); spread {:.1f} mm, Roussel & "
              "Coussot {:.1f} mm: {:+.1f} % (bound 10 %)\n",
              1e3 * r.slump, 1e3 * r.slump_pashias, 100 * (r.slump / r.slump_pashias - 1), 1e3 * r.spread,

@@ -93,7 +93,8 @@ namespace pastemix::flow {
 struct SlumpResult {
   double cell = 0.0, m = 0.0;            // m, s
   double tau_y = 0.0, rho = 0.0;         // Pa, kg/m3 (the store's)
-  double time = 0.0;                     // s, when at rest (or the limit)
+  double time = 0.0;                     // s, when at rest (the start of a spell of kSlumpRestHold) or the limit
+  double end_time = 0.0;                 // s, the end of the run (time + kSlumpRestHold when at rest)
   bool at_rest = false;
   double final_speed = 0.0;              // m/s, paste_rms_speed at the end (what at_rest judges)
   double final_max_speed = 0.0;          // m/s, paste_speed at the end (the fastest cell with alpha >= 1/2)
@@ -103,6 +104,14 @@ struct SlumpResult {
   double volume_drift = 0.0, max_divergence = 0.0;
   Cost cost;
 };
+// The slump (the mould's height minus the corner column's paste height) and the spread (the diameter of the
+// circle with the bottom row's paste area), m, of the quarter domain's current state.
+struct SlumpShape {
+  double slump = 0.0, spread = 0.0;
+};
+SlumpShape slump_shape(const FlowSolver& s);
+// The paste must stay at rest (at_rest) this long before the run stops: a dip of the RMS speed is not rest.
+inline constexpr double kSlumpRestHold = 0.1;  // s
 // `progress`, when given, is called after every step (the command prints a line per 0.05 s of flow time from it).
 using FlowProgress = std::function<void(const FlowSolver&)>;
 SlumpResult bingham_slump(double cell, double m, double tau_y, double rho, double eta_B, double max_time = 4.0,
