@@ -186,17 +186,25 @@ StepStats FlowSolver::step(double dt) {
       weight += w * w;
     }
   pressure_.subtract_gradient(dt, rho, p_, u_);
-  st.viscous = viscous_.solve(dt, rho, mu_, u_, s_.viscous_tolerance, s_.max_iterations, lagged ? &edge : nullptr,
-                              std::sqrt(weight));
+  // A failed solve (its inputs were checked above) says in which step it failed.
+  auto when = [&](const RuntimeFailure& e) {
+    return RuntimeFailure(fmt::format("{} in the step from t = {:.9g} s (step {}, dt {:.3g} s)", e.what(), t_,
+                                      totals_.steps, dt));
+  };
+  try {
+    st.viscous = viscous_.solve(dt, rho, mu_, u_, s_.viscous_tolerance, s_.max_iterations, lagged ? &edge : nullptr,
+                                std::sqrt(weight));
+  } catch (const RuntimeFailure& e) {
+    throw when(e);
+  }
   require_finite_faces(g_, u_, "velocity", at("after the viscous solve"));
   // Give the last gradient back and project for the whole pressure, with the last one as the guess: the same
   // result as projecting for the increment, and the same right-hand side (and CG iterations) as before.
   pressure_.subtract_gradient(-dt, rho, p_, u_);
   try {
     st.projection = pressure_.project(dt, rho, u_, p_, s_.pressure_tolerance, s_.max_iterations);
-  } catch (const RuntimeFailure& e) {  // its inputs were finite (checked above): say when it failed
-    throw RuntimeFailure(fmt::format("{} in the step from t = {:.9g} s (step {}, dt {:.3g} s)", e.what(), t_,
-                                     totals_.steps, dt));
+  } catch (const RuntimeFailure& e) {
+    throw when(e);
   }
   require_finite_cells(g_, p_, "pressure", at("after the projection"));
   require_finite_faces(g_, u_, "velocity", at("after the projection"));
