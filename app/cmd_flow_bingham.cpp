@@ -3,16 +3,20 @@
 //   pastemix validate flow poiseuille [--cells 32] [--m 1000]   Bingham plane Poiseuille, 1/2, 1, 2 x cells
 //   pastemix validate flow incline [--cells 24] [--m 1000]      Bingham film at 0.8 h_c (m, 2 m) and 1.5 h_c
 //   pastemix validate flow cliff [--cells 8] [--m 1000]         vertical cuts of 2 and 6 tau_y/(rho g), m and 2 m
-//   pastemix validate flow slump [--cells 10 5] [--m 1000] [--store out/lab/parameters.toml]   the lab's slump test
+//   pastemix validate flow slump [--cells 10 5] [--m 1000 [2000]] [--store out/lab/parameters.toml]
+//                                [--max-time 4] [--progress 0.05]     the lab's slump test
 // Each prints its error against the analytic answer, its cost and the paste-volume drift.
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <ctime>
 #include <memory>
 #include <string>
-#include <tuple>
 #include <vector>
 
 #include <Eigen/Core>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <omp.h>
 
 #include "app/commands.h"
@@ -95,23 +99,76 @@ void run_cliff(int cells, double m) {
     }
 }
 
-void run_slump_at(double cell, double m, double tau_y, double rho, double eta_B) {
-  const SlumpResult r = bingham_slump(cell, m, tau_y, rho, eta_B);
-  fmt::print("  {:g} mm cells, m = {:g} s: {} at t = {:.3f} s (paste speed {:.2e} m/s, rest below {:g})\n", 1e3 * cell, m,
-             r.at_rest ? "at rest" : "NOT at rest", r.time, r.final_speed, kRestSpeed);
+// One line per `every` s of flow time: where the step's cost goes (CG iterations per solve, the step), what
+// limits dt (the fastest face against the paste's speed), and the CPU time so far.
+class SlumpMonitor {
+ public:
+  explicit SlumpMonitor(double every) : every_(every), next_(every), cpu0_(std::clock()) {}
+  void operator()(const FlowSolver& s) {
+    const StepStats& st = s.last();
+    ++steps_;
+    pressure_ += st.projection.solve.iterations;
+    viscous_ += st.viscous.iterations;
+    max_pressure_ = std::max(max_pressure_, st.projection.solve.iterations);
+    max_viscous_ = std::max(max_viscous_, st.viscous.iterations);
+    if (s.time() < next_) return;
+    next_ = s.time() + every_;
+    fmt::print("    t {:.3f} s: {} steps (dt {:.2e} s), CG per solve pressure {:.1f} (max {}), viscous {:.1f} (max {}); "
+               "max speed {:.3e} m/s, paste: max {:.3e} m/s, RMS {:.3e} m/s; slump {:.1f} mm, spread {:.1f} mm; CPU {:.1f} s\n",
+               s.time(), steps_, st.dt, static_cast<double>(pressure_) / static_cast<double>(steps_), max_pressure_,
+               static_cast<double>(viscous_) / static_cast<double>(steps_), max_viscous_, s.max_speed(), paste_speed(s), paste_rms_speed(s),
+               1e3 * slump_shape(s).slump, 1e3 * slump_shape(s).spread,
+               static_cast<double>(std::clock() - cpu0_) / CLOCKS_PER_SEC);
+    std::fflush(stdout);
+    steps_ = 0;
+    pressure_ = viscous_ = 0;
+    max_pressure_ = max_viscous_ = 0;
+  }
+
+ private:
+  double every_, next_;
+  std::clock_t cpu0_;
+  long steps_ = 0, pressure_ = 0, viscous_ = 0;
+  int max_pressure_ = 0, max_viscous_ = 0;
+};
+
+struct SlumpOptions {
+  std::string store = "out/lab/parameters.toml";
+  std::vector<double> cells_mm{10.0, 5.0};
+  std::vector<double> m{1000.0};
+  double max_time = 4.0;  // s
+  double progress = 0.0;  // s of flow time between progress lines; 0: none
+  double eta_scale = 1.0;  // a sensitivity study only: the store's plastic viscosity times this
+  int threads = 1;
+};
+
+void run_slump_at(double cell, double m, const StorePaste& p, const SlumpOptions& o) {
+  FlowProgress progress;
+  if (o.progress > 0) progress = SlumpMonitor(o.progress);
+  const SlumpResult r =
+      bingham_slump(cell, m, p.yield_stress, p.density, o.eta_scale * p.plastic_viscosity, o.max_time, progress);
+  fmt::print("  {:g} mm cells, m = {:g} s: {} at t = {:.3f} s (held to {:.3f} s; at the end: paste RMS speed {:.2e} m/s, "
+             "rest below {:g}; fastest paste cell {:.2e} m/s, fastest face {:.2e} m/s)\n",
+             1e3 * cell, m, r.at_rest ? "at rest" : "NOT at rest", r.time, r.end_time, r.final_speed, kRestSpeed,
+             r.final_max_speed, r.final_air_speed);
   fmt::print("    slump {:.1f} mm, Pashias-Boger {:.1f} mm: {:+.1f} % (bound 10 % at 5 mm); spread {:.1f} mm, Roussel & "
              "Coussot {:.1f} mm: {:+.1f} % (bound 10 %)\n",
              1e3 * r.slump, 1e3 * r.slump_pashias, 100 * (r.slump / r.slump_pashias - 1), 1e3 * r.spread,
              1e3 * r.spread_roussel, 100 * (r.spread / r.spread_roussel - 1));
   print_cost(r.cost, r.volume_drift, r.max_divergence);
+  std::fflush(stdout);
 }
 
-void run_slump(const std::string& store, const std::vector<double>& cells_mm, double m) {
-  const StorePaste p = read_store_paste(store, 0.75);
+void run_slump(const SlumpOptions& o) {
+  const StorePaste p = read_store_paste(o.store, 0.75);
   fmt::print("slump: the 152 mm cylinder (H = D), quarter domain, the 75 % paste from {} ({}: tau_y {:.2f} Pa, eta_B "
-             "{:.3g} Pa s, rho {:.1f} kg/m3), Papanastasiou m = {:g} s\n",
-             store, p.key, p.yield_stress, p.plastic_viscosity, p.density, m);
-  for (double c : cells_mm) run_slump_at(1e-3 * c, m, p.yield_stress, p.density, p.plastic_viscosity);
+             "{:.3g} Pa s, rho {:.1f} kg/m3), Papanastasiou m = {} s\n",
+             o.store, p.key, p.yield_stress, p.plastic_viscosity, p.density, fmt::join(o.m, ", "));
+  if (o.eta_scale != 1.0)
+    fmt::print("  SENSITIVITY RUN: plastic viscosity {:g} x the store's = {:.3g} Pa s (not the acceptance case)\n",
+               o.eta_scale, o.eta_scale * p.plastic_viscosity);
+  for (double c : o.cells_mm)
+    for (double m : o.m) run_slump_at(1e-3 * c, m, p, o);
 }
 
 }  // namespace
@@ -138,17 +195,23 @@ void register_flow_bingham_commands(CLI::App& flow) {
   add("poiseuille", "Bingham plane Poiseuille flow vs the analytic plug profile (cells/2, cells, 2 cells)", 32,
       run_poiseuille);
   add("incline", "Bingham layer on an incline: at rest below h_c, the analytic film above", 24, run_incline);
-  auto so = std::make_shared<std::tuple<std::string, std::vector<double>, double, int>>(
-      "out/lab/parameters.toml", std::vector<double>{10.0, 5.0}, 1000.0, 1);
+  auto so = std::make_shared<SlumpOptions>();
   CLI::App* sl = flow.add_subcommand("slump", "the lab's slump test vs Pashias-Boger (slump) and Roussel & Coussot (spread)");
-  sl->add_option("--store", std::get<0>(*so), "the lab parameter store (default out/lab/parameters.toml)");
-  sl->add_option("--cells", std::get<1>(*so), "cell sizes in mm (default 10 5)");
-  sl->add_option("--m", std::get<2>(*so), "Papanastasiou regularisation m, s (default 1000)");
-  sl->add_option("--threads", std::get<3>(*so), "OpenMP threads (default 1)");
+  sl->add_option("--store", so->store, "the lab parameter store (default out/lab/parameters.toml)");
+  sl->add_option("--cells", so->cells_mm, "cell sizes in mm (default 10 5)");
+  sl->add_option("--m", so->m, "Papanastasiou regularisation m, s, one or more (default 1000)")
+      ->check(CLI::PositiveNumber);
+  sl->add_option("--max-time", so->max_time, "stop if not at rest by then, s (default 4)")->check(CLI::PositiveNumber);
+  sl->add_option("--progress", so->progress, "print a progress line every this many s of flow time (default: none)")
+      ->check(CLI::NonNegativeNumber);
+  sl->add_option("--eta-scale", so->eta_scale,
+                 "sensitivity only: the plastic viscosity times this (default 1: the store's value)")
+      ->check(CLI::PositiveNumber);
+  sl->add_option("--threads", so->threads, "OpenMP threads (default 1)");
   sl->callback([so] {
-    omp_set_num_threads(std::get<3>(*so));
-    Eigen::setNbThreads(std::get<3>(*so));
-    run_slump(std::get<0>(*so), std::get<1>(*so), std::get<2>(*so));
+    omp_set_num_threads(so->threads);
+    Eigen::setNbThreads(so->threads);
+    run_slump(*so);
   });
   add("cliff", "plane-strain vertical cut: 2 tau_y/(rho g) stands, 6 tau_y/(rho g) collapses", 8, run_cliff);
 }

@@ -136,4 +136,15 @@ double paste_speed(const FlowSolver& s) {
   return v;
 }
 
+double paste_rms_speed(const FlowSolver& s) {
+  const std::vector<double> uc = s.cell_velocity();
+  double num = 0.0, den = 0.0;
+  for (long c = 0; c < s.grid().cell_count(); ++c) {
+    const double a = std::clamp(s.alpha()[c], 0.0, 1.0);
+    num += a * (uc[3 * c] * uc[3 * c] + uc[3 * c + 1] * uc[3 * c + 1] + uc[3 * c + 2] * uc[3 * c + 2]);
+    den += a;
+  }
+  return den > 0.0 ? std::sqrt(num / den) : 0.0;
+}
+
 }  // namespace pastemix::flow

@@ -12,10 +12,14 @@
 // plug; above gamma_dot = 1/m it is the exact K gamma_dot^n). n = 1 with K = eta_B is the Bingham law.
 //
 // At rest: a regularised fluid never stops (Frigaard & Nouar 2005), so rest is a stated speed. The paste is
-// at rest when no cell that is mostly paste (alpha >= 1/2) moves faster than kRestSpeed (cell-centre
-// velocity magnitude). 1e-3 m/s: a 5 mm cell in 5 s, far below the 0.01 m/s the pours' stop rule uses for
-// rock in the paste (model/stop_rule.h paste_speed), and above the creep of a standing paste at m >= 1000 s
-// (a body of size L creeps at ~L / m: 1e-4 m/s for 0.1 m at m = 1000 s; at m = 100 s it would reach 1e-3).
+// at rest when its alpha-weighted RMS speed, sqrt(sum alpha |u|^2 / sum alpha) over the cells (cell-centre
+// velocities), is below kRestSpeed. The paste's own motion, not the air's: the largest speed over cells with
+// alpha >= 1/2 (paste_speed, kept for the cliff's movement bound) is set at the interface, where a cell's face
+// means carry the air's motion (the 10 mm slump: air at 0.29 m/s at 4 s, the interface cells' max 1.3e-3 m/s
+// and rising while the paste's RMS speed fell). 1e-3 m/s: a 5 mm cell in 5 s, far below the 0.01 m/s the pours'
+// stop rule uses for rock in the paste (model/stop_rule.h paste_speed), and above the creep of a standing
+// paste at m >= 1000 s (a body of size L creeps at ~L / m: 1e-4 m/s for 0.1 m at m = 1000 s; at m = 100 s it
+// would reach 1e-3).
 //
 // The store: the same values the engine's scenes read (`rheology_from` + `solids_fraction`,
 // model/fluid/fluid_scene.h): paste_rheology.cw_<...>.{yield_stress, plastic_viscosity, density} of the
@@ -78,8 +82,10 @@ struct StorePaste {
 StorePaste read_store_paste(const std::string& parameters_toml, double solids_fraction);
 
 class FlowSolver;
-// Max over cells with alpha >= 1/2 of the cell-centre speed (m/s): the speed "at rest" is judged by.
+// Max over cells with alpha >= 1/2 of the cell-centre speed (m/s): bounds how fast any paste moves.
 double paste_speed(const FlowSolver& s);
-inline bool at_rest(const FlowSolver& s, double rest_speed = kRestSpeed) { return paste_speed(s) < rest_speed; }
+// sqrt(sum alpha |u_c|^2 / sum alpha) over the cells (m/s): the speed "at rest" is judged by; 0 without paste.
+double paste_rms_speed(const FlowSolver& s);
+inline bool at_rest(const FlowSolver& s, double rest_speed = kRestSpeed) { return paste_rms_speed(s) < rest_speed; }
 
 }  // namespace pastemix::flow

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "base/error.h"
+#include "model/flow/finite_check.h"
 
 namespace pastemix::flow {
 
@@ -145,16 +146,26 @@ StepStats FlowSolver::step(double dt) {
   const auto t0 = std::chrono::steady_clock::now();
   StepStats st;
   st.dt = dt;
+  // Every stage checks what it made (model/flow/finite_check.h): a run stops at the first non-finite value.
+  auto at = [&](const char* stage) { return CheckPoint{stage, t_, totals_.steps}; };
+  if (!(dt > 0.0 && std::isfinite(dt)))
+    throw RuntimeFailure(fmt::format("flow: time step {} s is not positive and finite at t = {:.9g} s (step {})", dt,
+                                     t_, totals_.steps));
   // The strain rate of the start of the step (a shear-dependent law is lagged by one step), the paste fraction
   // after transport.
+  require_finite_faces(g_, u_, "velocity", at("on entry to the step"));
   const bool lagged = ph_.paste->shear_dependent();
   const std::vector<double> parts = lagged ? strain_parts() : std::vector<double>{};
   std::vector<double> gamma;
   for (std::size_t c = 0; c < parts.size(); c += 4) gamma.push_back(std::sqrt(parts[c]));
   const Faces u_lag = lagged ? u_ : Faces{};  // the velocity the shear edges' strain rates come from
   st.advection = advect(g_, ph_, dt, totals_.steps, alpha_, u_);
+  require_finite_cells(g_, alpha_, "paste fraction", at("after advection"));
+  require_finite_faces(g_, u_, "velocity", at("after advection"));
   const Faces rho = face_densities(g_, ph_, alpha_);
+  require_finite_faces(g_, rho, "face density", at("after the face densities"), true);
   update_viscosity(gamma);
+  require_finite_cells(g_, mu_, "viscosity", at("after the viscosities"), true);
   const EdgeLaw edge{ph_.paste.get(), &alpha_, ph_.eta_air, &u_lag, &parts};
   // Incremental pressure correction: gravity and the last pressure gradient enter the viscous solve, the
   // projection finds the new pressure. A steady state is then the exact discrete balance of gravity, pressure
@@ -175,16 +186,28 @@ StepStats FlowSolver::step(double dt) {
       weight += w * w;
     }
   pressure_.subtract_gradient(dt, rho, p_, u_);
-  st.viscous = viscous_.solve(dt, rho, mu_, u_, s_.viscous_tolerance, s_.max_iterations, lagged ? &edge : nullptr,
-                              std::sqrt(weight));
+  // A failed solve (its inputs were checked above) says in which step it failed.
+  auto when = [&](const RuntimeFailure& e) {
+    return RuntimeFailure(fmt::format("{} in the step from t = {:.9g} s (step {}, dt {:.3g} s)", e.what(), t_,
+                                      totals_.steps, dt));
+  };
+  try {
+    st.viscous = viscous_.solve(dt, rho, mu_, u_, s_.viscous_tolerance, s_.max_iterations, lagged ? &edge : nullptr,
+                                std::sqrt(weight));
+  } catch (const RuntimeFailure& e) {
+    throw when(e);
+  }
+  require_finite_faces(g_, u_, "velocity", at("after the viscous solve"));
   // Give the last gradient back and project for the whole pressure, with the last one as the guess: the same
   // result as projecting for the increment, and the same right-hand side (and CG iterations) as before.
   pressure_.subtract_gradient(-dt, rho, p_, u_);
-  st.projection = pressure_.project(dt, rho, u_, p_, s_.pressure_tolerance, s_.max_iterations);
-  for (int c = 0; c < 3; ++c)
-    for (double v : u_[c])
-      if (!std::isfinite(v))
-        throw RuntimeFailure(fmt::format("flow: non-finite velocity at t = {:.6g} s (step {})", t_, totals_.steps));
+  try {
+    st.projection = pressure_.project(dt, rho, u_, p_, s_.pressure_tolerance, s_.max_iterations);
+  } catch (const RuntimeFailure& e) {
+    throw when(e);
+  }
+  require_finite_cells(g_, p_, "pressure", at("after the projection"));
+  require_finite_faces(g_, u_, "velocity", at("after the projection"));
   t_ += dt;
   ++totals_.steps;
   totals_.pressure_iterations += st.projection.solve.iterations;

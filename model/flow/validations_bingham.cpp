@@ -261,7 +261,17 @@ std::vector<double> quarter_cylinder(const Grid& g) {
 
 }  // namespace
 
-SlumpResult bingham_slump(double cell, double m, double tau_y, double rho, double eta_B, double max_time) {
+SlumpShape slump_shape(const FlowSolver& s) {
+  const Grid& g = s.grid();
+  double column = 0.0, floor = 0.0;
+  for (int k = 0; k < g.n[2]; ++k) column += s.alpha()[g.cell(0, 0, k)] * g.h[2];
+  for (int j = 0; j < g.n[1]; ++j)
+    for (int i = 0; i < g.n[0]; ++i) floor += s.alpha()[g.cell(i, j, 0)] * g.h[0] * g.h[1];
+  return {kMouldH - column, 2.0 * std::sqrt(4.0 * floor / kPi)};
+}
+
+SlumpResult bingham_slump(double cell, double m, double tau_y, double rho, double eta_B, double max_time,
+                          const FlowProgress& progress) {
   SlumpResult r;
   r.cell = cell;
   r.m = m;
@@ -281,23 +291,31 @@ SlumpResult bingham_slump(double cell, double m, double tau_y, double rho, doubl
   const double v0 = s.paste_volume();
   r.slump_pashias = pashias_boger_slump(tau_y, rho, kMouldH);
   r.spread_roussel = 2.0 * roussel_coussot_radius(tau_y, rho, 4.0 * v0);  // the whole sample's volume
-  // At rest once no paste cell moves faster than kRestSpeed, after the first 0.1 s (it starts at rest).
+  // At rest once the paste's RMS speed is below kRestSpeed (bingham.h) and stays so for kSlumpRestHold, after
+  // the first 0.1 s (it starts at rest).
+  double rest_since = -1.0;  // s, the start of the current spell at rest
   while (s.time() < max_time) {
     s.step(s.next_time_step());
     r.max_divergence = std::max(r.max_divergence, relative_divergence(s.last()));
-    if (s.time() > 0.1 && at_rest(s)) {
+    if (progress) progress(s);
+    if (s.time() <= 0.1 || !at_rest(s)) {
+      rest_since = -1.0;
+      continue;
+    }
+    if (rest_since < 0.0) rest_since = s.time();
+    if (s.time() - rest_since >= kSlumpRestHold) {
       r.at_rest = true;
       break;
     }
   }
-  r.time = s.time();
-  r.final_speed = paste_speed(s);
-  double column = 0.0, floor = 0.0;
-  for (int k = 0; k < g.n[2]; ++k) column += s.alpha()[g.cell(0, 0, k)] * cell;
-  for (int j = 0; j < g.n[1]; ++j)
-    for (int i = 0; i < g.n[0]; ++i) floor += s.alpha()[g.cell(i, j, 0)] * cell * cell;
-  r.slump = kMouldH - column;
-  r.spread = 2.0 * std::sqrt(4.0 * floor / kPi);
+  r.time = r.at_rest ? rest_since : s.time();
+  r.end_time = s.time();
+  r.final_speed = paste_rms_speed(s);
+  r.final_max_speed = paste_speed(s);
+  r.final_air_speed = s.max_speed();
+  const SlumpShape shape = slump_shape(s);
+  r.slump = shape.slump;
+  r.spread = shape.spread;
   r.volume_drift = drift(s.paste_volume(), v0);
   r.cost = cost_of(s);
   return r;

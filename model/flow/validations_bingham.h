@@ -7,6 +7,7 @@
 // m each call gives.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "model/flow/validations.h"
@@ -81,7 +82,7 @@ namespace pastemix::flow {
 
 // --- slump: the lab's slump test (152 mm cylinder, H = D, datasets/thesis/slump_tests.csv) on a quarter
 // domain (symmetry planes x = 0 and y = 0, no-slip plate, open top), the mould lifted at once, run to rest
-// (model/flow/bingham.h kRestSpeed). References, both quasi-static:
+// (model/flow/bingham.h at_rest: the paste's RMS speed below kRestSpeed). References, both quasi-static:
 //   Pashias, Boger, Summers & Glenister (1996, J. Rheol. 40:1179), the cylinder: S/H = 1 - 2 tau'(1 - ln 2 tau'),
 //     tau' = tau_y / (rho g H) (101.7 mm at 138 Pa, 1843 kg/m3);
 //   Roussel & Coussot (2005, J. Rheol. 49:705), the spread (thin-layer) regime: on a no-slip plane the
@@ -92,15 +93,29 @@ namespace pastemix::flow {
 struct SlumpResult {
   double cell = 0.0, m = 0.0;            // m, s
   double tau_y = 0.0, rho = 0.0;         // Pa, kg/m3 (the store's)
-  double time = 0.0;                     // s, when at rest (or the limit)
+  double time = 0.0;                     // s, when at rest (the start of a spell of kSlumpRestHold) or the limit
+  double end_time = 0.0;                 // s, the end of the run (time + kSlumpRestHold when at rest)
   bool at_rest = false;
-  double final_speed = 0.0;              // m/s, paste_speed at the end
+  double final_speed = 0.0;              // m/s, paste_rms_speed at the end (what at_rest judges)
+  double final_max_speed = 0.0;          // m/s, paste_speed at the end (the fastest cell with alpha >= 1/2)
+  double final_air_speed = 0.0;          // m/s, FlowSolver::max_speed at the end (the fastest face: the air's)
   double slump = 0.0, slump_pashias = 0.0;      // m
   double spread = 0.0, spread_roussel = 0.0;    // m, diameters
   double volume_drift = 0.0, max_divergence = 0.0;
   Cost cost;
 };
-SlumpResult bingham_slump(double cell, double m, double tau_y, double rho, double eta_B, double max_time = 4.0);
+// The slump (the mould's height minus the corner column's paste height) and the spread (the diameter of the
+// circle with the bottom row's paste area), m, of the quarter domain's current state.
+struct SlumpShape {
+  double slump = 0.0, spread = 0.0;
+};
+SlumpShape slump_shape(const FlowSolver& s);
+// The paste must stay at rest (at_rest) this long before the run stops: a dip of the RMS speed is not rest.
+inline constexpr double kSlumpRestHold = 0.1;  // s
+// `progress`, when given, is called after every step (the command prints a line per 0.05 s of flow time from it).
+using FlowProgress = std::function<void(const FlowSolver&)>;
+SlumpResult bingham_slump(double cell, double m, double tau_y, double rho, double eta_B, double max_time = 4.0,
+                          const FlowProgress& progress = {});
 double pashias_boger_slump(double tau_y, double rho, double H);  // m
 double roussel_coussot_radius(double tau_y, double rho, double volume);  // m
 

@@ -15,6 +15,7 @@
 
 #include "base/error.h"
 #include "model/flow/flow_config.h"
+#include "model/flow/solver.h"
 
 using namespace pastemix;
 using namespace pastemix::flow;
@@ -147,4 +148,22 @@ TEST_CASE("bingham config: rheology_from takes tau_y, eta_B and the density from
             .find("key 'density': give either rheology_from or density") != std::string::npos);
   CHECK(error_of(replace(from, "parameters.toml", "nowhere.toml"), path).find("no such parameter store") != std::string::npos);
   CHECK(error_of(replace(from, "solids_fraction = 0.75\n", ""), path).find("needs solids_fraction") != std::string::npos);
+}
+
+TEST_CASE("bingham: at rest is judged on the paste's alpha-weighted RMS speed, not on the air at the interface") {
+  // Four cells along a periodic x; x-face velocities 0, 0, 0.01, 0.01 m/s give cell speeds 0, 0.005, 0.01, 0.005.
+  Grid g;
+  g.n = {4, 1, 1};
+  g.h = {0.01, 0.01, 0.01};
+  for (auto& b : g.bc) b.type = BoundaryType::periodic;
+  FlowSolver s(g, Phases{}, FlowSettings{});
+  s.set_alpha({1.0, 0.5, 0.1, 0.0});
+  s.velocity()[0] = {0.0, 0.0, 0.01, 0.01};
+  // sqrt((1 x 0 + 0.5 x 0.005^2 + 0.1 x 0.01^2 + 0) / 1.6) = 3.75e-3 m/s; the fastest cell with alpha >= 1/2: 0.005.
+  CHECK(paste_rms_speed(s) == doctest::Approx(3.75e-3).epsilon(1e-12));
+  CHECK(paste_speed(s) == doctest::Approx(5e-3).epsilon(1e-12));
+  CHECK(!at_rest(s));
+  CHECK(at_rest(s, 4e-3));
+  s.set_alpha({0.0, 0.0, 0.0, 0.0});
+  CHECK(paste_rms_speed(s) == 0.0);  // no paste: nothing moves
 }
