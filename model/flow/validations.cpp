@@ -222,6 +222,8 @@ DamBreakResult dam_break(int cells_across, const std::vector<double>& T) {
     while (s.time() < t * (1 - 1e-14)) {
       s.step(std::min(s.next_time_step(), t - s.time()));
       r.max_divergence = std::max(r.max_divergence, relative_divergence(s.last()));
+      r.track.T.push_back(s.time() * t_scale);
+      r.track.Z.push_back(bottom_front(s) / a);
     }
     r.T.push_back(Ti);
     r.front.push_back(bottom_front(s) / a);
@@ -229,6 +231,16 @@ DamBreakResult dam_break(int cells_across, const std::vector<double>& T) {
   r.volume_drift = relative_drift(s.paste_volume(), v0);
   r.cost = cost_of(s);
   return r;
+}
+
+double time_to_reach(const Series& track, double Z) {
+  double t0 = 0.0, z0 = 1.0;  // T = 0: the column's face at x = a
+  for (std::size_t i = 0; i < track.T.size(); ++i) {
+    if (track.Z[i] >= Z) return z0 >= Z ? t0 : t0 + (Z - z0) / (track.Z[i] - z0) * (track.T[i] - t0);
+    t0 = track.T[i];
+    z0 = track.Z[i];
+  }
+  return std::nan("");
 }
 
 Series read_martin_moyce(const std::filesystem::path& csv) {
