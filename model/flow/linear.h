@@ -91,7 +91,9 @@ class ViscousOperator {
 };
 
 // Pressure projection: solves div((dt / rho_f) grad p) = div u (p in Pa, 0 on an open side; in a closed box
-// cell 0 is pinned to 0 exactly) and sets u -= (dt / rho_f) grad p. `p` is the initial guess and the result.
+// defined up to a constant, returned with p = 0 in cell 0) and sets u -= (dt / rho_f) grad p, so that
+// ||div u_new|| / ||div u*|| <= tol, recomputed from the updated faces (RuntimeFailure otherwise). `p` is the
+// initial guess and the result.
 struct ProjectionStats {
   SolveStats solve;
   double divergence_before = 0.0;  // ||div u*||_2 (1/s), before
@@ -117,10 +119,14 @@ class PressureOperator {
     long face, a, b;           // the face's cells (-1: outside, an open side)
     long paa, pbb, pab, pba;   // value positions
   };
+  void fill(double dt, const Faces& rho_face);  // the operator's values (no pin: singular in a closed box)
+  // p = x (shifted to p_0 = 0 in a closed box), u = u_star - (dt / rho_f) grad p, div = div u; returns ||div||.
+  double apply(double dt, const Faces& rho_face, const Faces& u_star, Eigen::VectorXd& x, std::vector<double>& p,
+               Faces& u, std::vector<double>& div) const;
   Grid g_;
   std::vector<Link> links_;
   bool open_ = false;
-  long pin_ = 0;
+  long pin_ = 0;  // value position of cell 0's diagonal (pinned in the closed box's preconditioner)
   Matrix A_;
 };
 

@@ -64,6 +64,12 @@ class MicPreconditioner {
   MicPreconditioner& compute(const MatType& m) {
     return factorize(m);
   }
+  // Adds v to the diagonal of row k of the copied matrix (before the lazy factorisation): the pressure solve
+  // of a closed box factors its singular operator with one row pinned, so that the factor exists.
+  void add_to_diagonal(Eigen::Index k, double v) {
+    diag_[static_cast<std::size_t>(k)] += v;
+    factored_ = false;
+  }
 
   // z = (L L^T)^-1 r.
   Eigen::VectorXd solve(const Eigen::VectorXd& r) const;

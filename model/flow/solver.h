@@ -9,8 +9,9 @@
 //   3. gravity g dt on every face that is not a wall, and the last step's pressure gradient (incremental
 //      pressure correction: a steady flow is then exact at any dt);
 //   4. implicit viscous step, components coupled (model/flow/linear.h), face densities from the new alpha;
-//   5. projection to a divergence-free velocity (relative residual <= pressure_tolerance), the last
-//      gradient given back first, so that it solves for the whole new pressure with the last as its guess.
+//   5. projection to a divergence-free velocity (relative divergence recomputed from the faces <=
+//      pressure_tolerance), the last gradient given back first, so that it solves for the whole new pressure
+//      with the last as its guess.
 // The step is the flow's own: a DEM loop can call advance_to(t) with its own times and sub-cycle.
 #pragma once
 

@@ -193,12 +193,12 @@ double bottom_front(const FlowSolver& s) {
 
 }  // namespace
 
-DamBreakResult dam_break(int cells_across, const std::vector<double>& T) {
-  const double a = 2.25 * 0.0254;  // m, the column's width (Martin & Moyce's larger column)
-  const double gacc = 9.81;
+FlowSolver dam_break_setup(int cells_across) {
+  const double a = kDamBreakWidth;
   Grid g;
   // 10a long: the model's front is at 7.7a at T = 5.09 (the last compared point; about 8.4a by T = 5.5), so the far wall stays
-  // out of the comparison; Martin & Moyce's channel let the surge run past 14a.
+  // out of the comparison; Martin & Moyce's channel let the surge run past 14a. 2.5a high: a lid at 4a moves
+  // the front by < 0.2 % (10 cells, VALIDATION.md).
   g.n = {10 * cells_across, 1, static_cast<int>(std::lround(2.5 * cells_across))};
   const double h = a / cells_across;
   g.h = {h, h, h};
@@ -210,9 +210,29 @@ DamBreakResult dam_break(int cells_across, const std::vector<double>& T) {
   ph.paste = std::make_shared<Newtonian>(1.0e-3);
   ph.eta_air = 1.8e-5;
   FlowSettings fs;
-  fs.gravity = {0.0, 0.0, -gacc};
+  fs.gravity = {0.0, 0.0, -kDamBreakGravity};
   FlowSolver s(g, ph, fs);
   s.add_paste_box({0, 0, 0}, {a, h, 2.0 * a});
+  return s;
+}
+
+double release_pressure(double x, double z) {
+  // p = rho g (H - z) + sum_n A_n cosh(k_n x) cos(k_n z), k_n = (2n + 1) pi / (2H), A_n from p = 0 at x = a;
+  // cosh(k x) / cosh(k a) written with exponentials (no overflow for the high terms).
+  const double a = kDamBreakWidth, H = 2.0 * a, rho_g = 1000.0 * kDamBreakGravity;
+  const double kPi = 3.14159265358979323846;
+  double q = 0.0;
+  for (int n = 0; n < 4000; ++n) {
+    const double k = (2 * n + 1) * kPi / (2.0 * H);
+    const double ratio = std::exp(k * (x - a)) * (1.0 + std::exp(-2.0 * k * x)) / (1.0 + std::exp(-2.0 * k * a));
+    q += ratio / (k * k) * std::cos(k * z);
+  }
+  return rho_g * ((H - z) - 2.0 / H * q);
+}
+
+DamBreakResult dam_break(int cells_across, const std::vector<double>& T) {
+  const double a = kDamBreakWidth, gacc = kDamBreakGravity;
+  FlowSolver s = dam_break_setup(cells_across);
   const double v0 = s.paste_volume();
   DamBreakResult r;
   r.cells_across = cells_across;
@@ -222,6 +242,8 @@ DamBreakResult dam_break(int cells_across, const std::vector<double>& T) {
     while (s.time() < t * (1 - 1e-14)) {
       s.step(std::min(s.next_time_step(), t - s.time()));
       r.max_divergence = std::max(r.max_divergence, relative_divergence(s.last()));
+      r.track.T.push_back(s.time() * t_scale);
+      r.track.Z.push_back(bottom_front(s) / a);
     }
     r.T.push_back(Ti);
     r.front.push_back(bottom_front(s) / a);
@@ -229,6 +251,16 @@ DamBreakResult dam_break(int cells_across, const std::vector<double>& T) {
   r.volume_drift = relative_drift(s.paste_volume(), v0);
   r.cost = cost_of(s);
   return r;
+}
+
+double time_to_reach(const Series& track, double Z) {
+  double t0 = 0.0, z0 = 1.0;  // T = 0: the column's face at x = a
+  for (std::size_t i = 0; i < track.T.size(); ++i) {
+    if (track.Z[i] >= Z) return z0 >= Z ? t0 : t0 + (Z - z0) / (track.Z[i] - z0) * (track.T[i] - t0);
+    t0 = track.T[i];
+    z0 = track.Z[i];
+  }
+  return std::nan("");
 }
 
 Series read_martin_moyce(const std::filesystem::path& csv) {

@@ -58,18 +58,32 @@ struct StillResult {
 StillResult still(double end_time = 1.0, double ratio = 1800.0, double interface_cells = 10.37);
 
 // --- dam-break: Martin & Moyce (1952), n^2 = 2, a = 2.25 in, 2-D (one cell deep, periodic). ---
+struct Series {
+  std::vector<double> T, Z;
+};
 struct DamBreakResult {
   int cells_across = 0;          // cells across the column's width a
   std::vector<double> T, front;  // front Z = z/a at the reference T = t sqrt(2 g / a)
+  Series track;                  // (T, Z) after every step: when the model reaches a given Z
   double volume_drift = 0.0;
   double max_divergence = 0.0;
   Cost cost;
 };
 // Front = where the bottom row of cells crosses alpha = 1/2 (linear between cell centres), over a.
 DamBreakResult dam_break(int cells_across, const std::vector<double>& T);
-struct Series {
-  std::vector<double> T, Z;
-};
+inline constexpr double kDamBreakWidth = 2.25 * 0.0254;  // m, the column's width a (Martin & Moyce's larger column)
+inline constexpr double kDamBreakGravity = 9.81;         // m/s2
+// The dam break at t = 0: water (1000 kg/m3) in [0, a] x [0, 2a], air around it, the closed free-slip box.
+FlowSolver dam_break_setup(int cells_across);
+// The pressure (Pa) in the column just after an instant release, relative to the column's top, at (x, z) in
+// [0, a] x [0, 2a]: the potential-flow solution of the first instant (velocity zero, acceleration from
+// -grad p / rho + g): Laplace's equation, p = 0 on the free face x = a and on the top z = 2a, dp/dx = 0 on the
+// back wall, dp/dz = -rho g on the floor. Series in cos(k_n z), k_n = (2n + 1) pi / (4a), air neglected.
+double release_pressure(double x, double z);
+// The first T at which the track's front reaches Z (linear between steps); NaN if it never does. The
+// difference to the data's T at the same Z is the model's lead in time: a constant lead is what a delay at
+// the experiment's release gives.
+double time_to_reach(const Series& track, double Z);
 Series read_martin_moyce(const std::filesystem::path& csv);
 
 }  // namespace pastemix::flow
