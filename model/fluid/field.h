@@ -17,6 +17,9 @@
 // The drag enters through drag_kick_implicit (drag_kick.h, the one kernel) with F = contacts + m g + buoyancy: m dv/dt = F - phi D is
 // solved as (m/phi) dv/dt = F/phi - D, the same kernel with a scaled mass and force. The half kick of the
 // Verlet step is thus stable for any dt, and the yield term cannot reverse the velocity (stick, no chatter).
+// A linear law without a rest part (laws' linear_slope: Newtonian with the Stokes curve) takes that kernel's
+// closed form instead (drag_kick.h linear_kick: what its iterations converge to, ~1e-13 m/s from them), with
+// its two factors kept per sphere, so its kick is three multiply-adds per component (issue 19).
 // No fluid torque is applied (the spin is untouched by the fluid: a stated simplification).
 // With collective = "bearing_capacity" the rest part D(0+) of a sphere in a cluster of touching submerged
 // spheres is multiplied by its cluster factor (collective.h: shadowing, footing capacity), recomputed every
