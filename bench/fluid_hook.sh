@@ -14,7 +14,9 @@
 #            pairs, shadowing, footprint), run every collective_interval = 5e-4 s = every 50 steps.
 # Prints the step-loop time (the profile's "total wall") and particle-steps/s per variant, and the ratios to
 # "none". Usage: bench/fluid_hook.sh [--steps 1000] [--repeats 3] [--threads 1]
-# PASTEMIX=/path/to/pastemix to use another build (default build/pastemix).
+# PASTEMIX=/path/to/pastemix to use another build (default build/pastemix); PASTEMIX_BASELINE=/path/to/other
+# also runs that build, interleaved with the first (each variant: PASTEMIX then baseline), and prints its table
+# and the ratio of the two builds' loop times per variant.
 set -euo pipefail
 STEPS=1000 REPEATS=3 THREADS=1
 while [[ $# -gt 0 ]]; do
@@ -28,6 +30,8 @@ done
 BENCH="$(cd "$(dirname "$0")" && pwd)"
 ROOT="$(dirname "$BENCH")"
 PASTEMIX="${PASTEMIX:-$ROOT/build/pastemix}"
+BASELINE="${PASTEMIX_BASELINE:-}"
+BUILDS="new"; [[ -n "$BASELINE" ]] && BUILDS="new base"
 PY=/usr/bin/python3
 WORK="$(mktemp -d "${TMPDIR:-/tmp}/fluid_hook.XXXXXX")"
 trap 'rm -rf "$WORK"' EXIT
@@ -51,23 +55,36 @@ curve = "published_4_19"'
 declare -A BEST BCPU
 for r in $(seq 1 "$REPEATS"); do
   for v in none outside inside paste cluster; do
-    log="$WORK/$v.$r.log"
-    OMP_NUM_THREADS="$THREADS" OMP_WAIT_POLICY=passive "$PY" "$BENCH/tools/cputime.py" "$log.cpu" -- "$PASTEMIX" run "$WORK/$v.toml" --threads "$THREADS" --quiet \
-        --out "$WORK/out_$v" > "$log" 2>&1 || { cat "$log" >&2; exit 1; }
-    t=$(awk '/total wall/ {print $3}' "$log")
-    c=$(awk '/^cpu_s/ {print $2}' "$log.cpu")
-    echo "repeat $r  $v  loop ${t} s wall, process ${c} s CPU" >&2
-    if [[ -z "${BEST[$v]:-}" ]] || awk -v a="$t" -v b="${BEST[$v]}" 'BEGIN {exit !(a < b)}'; then BEST[$v]=$t; fi
-    if [[ -z "${BCPU[$v]:-}" ]] || awk -v a="$c" -v b="${BCPU[$v]}" 'BEGIN {exit !(a < b)}'; then BCPU[$v]=$c; fi
+    for bld in $BUILDS; do
+      bin="$PASTEMIX"; [[ $bld == base ]] && bin="$BASELINE"
+      key="$bld.$v" log="$WORK/$bld.$v.$r.log"
+      OMP_NUM_THREADS="$THREADS" OMP_WAIT_POLICY=passive "$PY" "$BENCH/tools/cputime.py" "$log.cpu" -- "$bin" run "$WORK/$v.toml" --threads "$THREADS" --quiet \
+          --out "$WORK/out_$v" > "$log" 2>&1 || { cat "$log" >&2; exit 1; }
+      t=$(awk '/total wall/ {print $3}' "$log")
+      c=$(awk '/^cpu_s/ {print $2}' "$log.cpu")
+      echo "repeat $r  $bld  $v  loop ${t} s wall, process ${c} s CPU" >&2
+      if [[ -z "${BEST[$key]:-}" ]] || awk -v a="$t" -v b="${BEST[$key]}" 'BEGIN {exit !(a < b)}'; then BEST[$key]=$t; fi
+      if [[ -z "${BCPU[$key]:-}" ]] || awk -v a="$c" -v b="${BCPU[$key]}" 'BEGIN {exit !(a < b)}'; then BCPU[$key]=$c; fi
+    done
   done
 done
 N=$(grep -c '^\[\[particle\]\]' "$WORK/none.toml")
-printf 'fluid hook cost: bench bed, %s spheres, %s steps, %s thread(s), best of %s (alternating runs)\n' "$N" "$STEPS" "$THREADS" "$REPEATS"
-printf '%-8s %10s %17s %16s %9s %13s %9s\n' variant "loop s" "ns/particle-step" "particle-steps/s" "vs none" \
-    "process CPU s" "vs none"
-for v in none outside inside paste cluster; do
-  awk -v v="$v" -v t="${BEST[$v]}" -v t0="${BEST[none]}" -v c="${BCPU[$v]}" -v c0="${BCPU[none]}" -v n="$N" \
-      -v s="$STEPS" 'BEGIN {printf "%-8s %10.3f %17.1f %16.4g %9.4f %13.3f %9.4f\n", v, t, 1e9 * t / (n * s), n * s / t,
-                            t / t0, c, c / c0}'
+for bld in $BUILDS; do
+  bin="$PASTEMIX"; [[ $bld == base ]] && bin="$BASELINE"
+  printf 'fluid hook cost: bench bed, %s spheres, %s steps, %s thread(s), best of %s (alternating runs), %s\n' "$N" "$STEPS" "$THREADS" "$REPEATS" "$bin"
+  printf '%-8s %10s %17s %16s %9s %13s %9s\n' variant "loop s" "ns/particle-step" "particle-steps/s" "vs none" \
+      "process CPU s" "vs none"
+  for v in none outside inside paste cluster; do
+    awk -v v="$v" -v t="${BEST[$bld.$v]}" -v t0="${BEST[$bld.none]}" -v c="${BCPU[$bld.$v]}" -v c0="${BCPU[$bld.none]}" -v n="$N" \
+        -v s="$STEPS" 'BEGIN {printf "%-8s %10.3f %17.1f %16.4g %9.4f %13.3f %9.4f\n", v, t, 1e9 * t / (n * s), n * s / t,
+                              t / t0, c, c / c0}'
+  done
 done
+if [[ -n "$BASELINE" ]]; then
+  printf 'loop time, this build / baseline:'
+  for v in none outside inside paste cluster; do
+    awk -v v="$v" -v a="${BEST[new.$v]}" -v b="${BEST[base.$v]}" 'BEGIN {printf "  %s %.3f", v, a / b}'
+  done
+  echo
+fi
 echo "(loop s: the step loop's wall time from the run's profile; process CPU: whole process incl. scene parse and output)"

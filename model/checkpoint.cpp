@@ -118,7 +118,7 @@ struct CheckpointAccess {
     io(f.surface_at_refresh_), io(f.factor_), io(f.factored_), io(f.since_clusters_), io(f.stats_);
     // The per-particle constants of the kick and the clusters' change test (FluidField, issue 19's fluid-pass
     // speed): without them a resumed run indexed empty arrays (phi_ is filled only where update() runs anew).
-    io(f.phi_), io(f.y_), io(f.d0_), io(f.rest_region_);
+    io(f.phi_), io(f.y_), io(f.d0_), io(f.rest_region_), io(f.lin_k_), io(f.lin_decay_), io(f.lin_gain_);
     io(f.pairs_version_), io(f.clustered_version_), io(f.clustered_members_), io(f.clustered_x_);
     io(f.clustered_surface_);
   }

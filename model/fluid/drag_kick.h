@@ -56,6 +56,24 @@ inline Vec drag_kick(const Vec& v, const Vec& F, double m, double h, const DragS
   return out;
 }
 
+// The kick of a linear drag D(s) = k s without a rest part (a Newtonian fluid with the Stokes curve,
+// laws/newtonian_stokes.h): m dv/dt = F - k v has the exact solution v e^-a + F (1 - e^-a) / k over a kick of
+// length h, a = k h / m: drag_kick with the slope k, to which drag_kick_implicit's iterations converge (there
+// the slope is measured from D(1e-12 m/s) and differs from k by ~1e-12 / s relative: a rounding-level
+// difference, tested in tests/model/fluid/drag_kick_test.cpp). Both factors depend only on the sphere and h,
+// so FluidField computes them once per sphere: a kick is then three multiply-adds per component.
+struct LinearKick {
+  double decay = 1.0;  // -, e^-a
+  double gain = 0.0;   // s/kg, (1 - e^-a) / k
+};
+inline LinearKick linear_kick(double k, double m, double h) {
+  const double a = k * h / m;
+  return {std::exp(-a), a > 1e-12 ? -std::expm1(-a) / k : h / m};  // the small-a form as drag_kick's
+}
+inline Vec apply(const LinearKick& c, const Vec& v, const Vec& F) {
+  return {v[0] * c.decay + F[0] * c.gain, v[1] * c.decay + F[1] * c.gain, v[2] * c.decay + F[2] * c.gain};
+}
+
 // The implicit kick: the one FluidField::kick runs and the tests test. `magnitude` is the drag D(s) (N) of
 // any drag law (laws/drag_law.h), d0 = D(0+) the part the slope k(s) = (D(s) - d0) / s is measured from,
 // and `held` (N) the rest resistance the kick applies (d0 for a lone sphere; d0 times its cluster factor

@@ -13,13 +13,14 @@ FluidField::FluidField(std::vector<FluidRegion> regions) : regions_(std::move(re
   for (const FluidRegion& r : regions_) {
     surface_.push_back(r.z_surface0);
     if (r.collective) cluster_interval_ = std::min(cluster_interval_, r.collective_interval);
+    buoyant_density_.push_back(r.buoyancy ? r.density() : 0.0);
   }
 }
 
 namespace {
 
 // Volume (m3) of a sphere of radius r at height z that lies between the bottom and the surface.
-double wetted_volume(const FluidRegion& reg, double z, double r, double z_s, bool partial) {
+inline double wetted_volume(const FluidRegion& reg, double z, double r, double z_s, bool partial) {
   if (!partial) {
     // The thesis's rule: all or nothing, by the centre.
     return (z < z_s && z > reg.z_bottom) ? 4.0 / 3.0 * kPi * r * r * r : 0.0;
@@ -55,7 +56,10 @@ void FluidField::update(const Particles& p, const std::vector<std::uint32_t>* pa
   if (!listed || region_of_.size() != n) {  // every flag anew (no list, or particles were added)
     region_of_.assign(n, -1);
     v_sub_.assign(n, 0.0);
-    if (rest_region_.size() != n) phi_.assign(n, 0.0), y_.assign(n, 0.0), d0_.assign(n, 0.0), rest_region_.assign(n, -1);
+    if (rest_region_.size() != n) {
+      phi_.assign(n, 0.0), y_.assign(n, 0.0), d0_.assign(n, 0.0), rest_region_.assign(n, -1);
+      lin_k_.assign(n, 0.0), lin_decay_.assign(n, 1.0), lin_gain_.assign(n, 0.0);
+    }
     members_.clear();
     stale_ = listed;
   }
@@ -180,20 +184,41 @@ double rest_drag(const FluidRegion& reg, double y, double radius) {
   return with_drag(reg, y, radius, [](const auto& magnitude) { return magnitude(kRestSpeed); });
 }
 
-}  // namespace
-
-void FluidField::keep_sphere(const Particles& p, std::size_t a, int region) {
-  const double r = p.radius[a];
-  const double volume = 4.0 / 3.0 * kPi * r * r * r;
-  phi_[a] = std::min(1.0, v_sub_[a] / volume);
-  if (rest_region_[a] == region) return;
-  const FluidRegion& reg = regions_[static_cast<std::size_t>(region)];
-  y_[a] = yield_number(reg, p.mass[a], r, g_);
-  d0_[a] = rest_drag(reg, y_[a], r);
-  rest_region_[a] = region;
+// N s/m: the slope k of a law that is linear without a rest part, D(s) = k s (the law's linear_slope with
+// this curve), else 0. Such a law has neither a yield stress nor a yield term, so the switches do not apply.
+double linear_slope(const FluidRegion& reg, double radius) {
+  return std::visit(
+      [&](const auto& prm) {
+        using Law = typename std::decay_t<decltype(prm)>::Law;
+        const auto sphere = Law::sphere(prm, reg.curve, 2.0 * radius, 0.0);
+        if constexpr (requires { Law::linear_slope(sphere); })
+          return Law::linear_slope(sphere);
+        else
+          return 0.0;
+      },
+      reg.law);
 }
 
-Vec3 FluidField::kick(long a, const Vec3& v, const Vec3& F, double mass, double radius, double h,
+}  // namespace
+
+void FluidField::enter(const Particles& p, std::size_t a, int region) {
+  const double r = p.radius[a], phi = phi_[a];
+  if (rest_region_[a] != region) {
+    const FluidRegion& reg = regions_[static_cast<std::size_t>(region)];
+    y_[a] = yield_number(reg, p.mass[a], r, g_);
+    d0_[a] = rest_drag(reg, y_[a], r);
+    lin_k_[a] = linear_slope(reg, r);
+    rest_region_[a] = region;
+  }
+  if (lin_k_[a] > 0.0) {
+    // m dv/dt = F - phi k v over the World's half kick dt/2: the closed form with mass m/phi and force F/phi,
+    // i.e. v decay + F gain / phi (one multiplication per component in the kick instead of a division).
+    const LinearKick c = linear_kick(lin_k_[a], p.mass[a] / phi, 0.5 * dt_);
+    lin_decay_[a] = c.decay, lin_gain_[a] = c.gain / phi;
+  }
+}
+
+Vec3 FluidField::kick_general(long a, const Vec3& v, const Vec3& F, double mass, double radius, double h,
                       const Vec3& g) const {
   const std::size_t i = static_cast<std::size_t>(a);
   const FluidRegion& reg = regions_[static_cast<std::size_t>(region_of_[i])];
@@ -201,6 +226,10 @@ Vec3 FluidField::kick(long a, const Vec3& v, const Vec3& F, double mass, double 
   const double phi = phi_[i];  // submerged fraction (update())
   Vec3 force = F;
   if (reg.buoyancy) force -= g * (reg.density() * vs);
+  if (lin_k_[i] > 0.0) {  // linear drag (drag_kick.h) at another h or gravity than kick()'s kept ones
+    const LinearKick c = linear_kick(lin_k_[i], mass / phi, h);
+    return v * c.decay + force * (c.gain / phi);
+  }
   // m dv/dt = F - phi D  <=>  (m/phi) dv/dt = F/phi - D: the kernel's kick with scaled mass and force.
   // (x / 1 is x exactly: a sphere fully under the surface skips the four divisions, the same bits.)
   const bool whole = phi == 1.0;

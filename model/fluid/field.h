@@ -17,6 +17,9 @@
 // The drag enters through drag_kick_implicit (drag_kick.h, the one kernel) with F = contacts + m g + buoyancy: m dv/dt = F - phi D is
 // solved as (m/phi) dv/dt = F/phi - D, the same kernel with a scaled mass and force. The half kick of the
 // Verlet step is thus stable for any dt, and the yield term cannot reverse the velocity (stick, no chatter).
+// A linear law without a rest part (laws' linear_slope: Newtonian with the Stokes curve) takes that kernel's
+// closed form instead (drag_kick.h linear_kick: what its iterations converge to, ~1e-13 m/s from them), with
+// its two factors kept per sphere, so its kick is three multiply-adds per component (issue 19).
 // No fluid torque is applied (the spin is untouched by the fluid: a stated simplification).
 // With collective = "bearing_capacity" the rest part D(0+) of a sphere in a cluster of touching submerged
 // spheres is multiplied by its cluster factor (collective.h: shadowing, footing capacity), recomputed every
@@ -39,6 +42,7 @@
 #include <vector>
 
 #include "base/drag_curves.h"
+#include "model/fluid/buoyancy.h"
 #include "model/fluid/collective.h"
 #include "model/fluid/drag_kick.h"
 #include "model/laws/registry.h"
@@ -82,7 +86,10 @@ class FluidField {
   void update(const Particles& p, const std::vector<std::uint32_t>* pair_i = nullptr,
               const std::vector<std::uint32_t>* pair_j = nullptr);
   // The step (s) and gravity (m/s2) of the World: set before the first update() when a region is collective.
-  void set_step(double dt, const Vec3& g) { dt_ = dt, g_ = g; }
+  void set_step(double dt, const Vec3& g) {
+    if (dt != dt_ || g.x != g_.x || g.y != g_.y || g.z != g_.z) rest_region_.assign(rest_region_.size(), -1);  // kept for the old ones
+    dt_ = dt, g_ = g;
+  }
   // Candidate list (see above): margin in m (the Verlet skin); stale at every pair-list rebuild.
   void set_candidate_margin(double margin) { margin_ = margin, stale_ = true; }
   // The pair list was rebuilt (World): also invalidates the clusters kept while nothing moved.
@@ -93,11 +100,23 @@ class FluidField {
     region_of_.clear(), v_sub_.clear(), members_.clear(), candidates_.clear(), stale_ = true;
     factor_.clear(), factored_.clear();  // indices changed: the clusters are recomputed at the next update
     phi_.clear(), y_.clear(), d0_.clear(), rest_region_.clear(), clustered_members_.clear();
+    lin_k_.clear(), lin_decay_.clear(), lin_gain_.clear();
   }
   std::size_t candidate_count() const { return margin_ > 0.0 ? candidates_.size() : region_of_.size(); }
   // New velocity after a kick of length h (s) of particle a under the non-drag force F (N, gravity
-  // included, buoyancy not: added here); g is the gravity vector (m/s2).
-  Vec3 kick(long a, const Vec3& v, const Vec3& F, double mass, double radius, double h, const Vec3& g) const;
+  // included, buoyancy not: added here); g is the gravity vector (m/s2). mass and radius are particle a's
+  // (those of the Particles update() saw: the per-sphere constants were kept for them).
+  Vec3 kick(long a, const Vec3& v, const Vec3& F, double mass, double radius, double h, const Vec3& g) const {
+    const std::size_t i = static_cast<std::size_t>(a);
+    // A linear law at the World's half step and gravity (the usual case): its kept factors, inline here
+    // (buoyancy as kick_general writes it); anything else the general kick.
+    if (lin_k_[i] > 0.0 && h == 0.5 * dt_ && g.x == g_.x && g.y == g_.y && g.z == g_.z) {
+      const double rho_b = buoyant_density_[static_cast<std::size_t>(region_of_[i])];  // 0: buoyancy off
+      const Vec3 force = rho_b > 0.0 ? F - g * (rho_b * v_sub_[i]) : F;
+      return v * lin_decay_[i] + force * lin_gain_[i];
+    }
+    return kick_general(a, v, F, mass, radius, h, g);
+  }
 
   bool inside(long a) const { return region_of_[a] >= 0; }
   // The particles inside a region at the last update(), ascending (the World's fluid pass).
@@ -129,7 +148,22 @@ class FluidField {
   // its yield number and rest drag D(0+) (both constant for a sphere in one fluid; gravity g_).
   std::vector<double> phi_, y_, d0_;
   std::vector<int> rest_region_;
-  void keep_sphere(const Particles& p, std::size_t a, int region);
+  // A linear law (D = k s, no rest part: laws' linear_slope) has a closed-form kick (drag_kick.h): its slope
+  // k (N s/m, 0 for any other law) and, for this step's phi and the World's half step dt_/2, its factors
+  // (v' = v decay + F gain: decay -, gain s/kg, the 1/phi folded in).
+  std::vector<double> lin_k_, lin_decay_, lin_gain_;
+  void keep_sphere(const Particles& p, std::size_t a, int region) {
+    const double r = p.radius[a];
+    const double phi = std::min(1.0, v_sub_[a] / (4.0 / 3.0 * kPi * r * r * r));
+    // A sphere under the surface keeps its phi to the bit (the same expressions of the same r): its
+    // constants are made once per stay in a region; one at the surface gets its linear factors each step.
+    const bool moved = phi != phi_[a];
+    phi_[a] = phi;
+    if (rest_region_[a] != region || (moved && lin_k_[a] > 0.0)) enter(p, a, region);
+  }
+  void enter(const Particles& p, std::size_t a, int region);  // the constants of keep_sphere
+  std::vector<double> buoyant_density_;  // kg/m3 per region, 0 where buoyancy is off (the inline kick)
+  Vec3 kick_general(long a, const Vec3& v, const Vec3& F, double mass, double radius, double h, const Vec3& g) const;
   // Clusters are recomputed only when their input changed: the members, their positions, the surfaces or
   // the pair list (a bed at rest in the paste keeps its clusters, to the bit: the same input, the same
   // factors).

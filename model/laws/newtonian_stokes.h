@@ -31,6 +31,12 @@ struct NewtonianStokes {
   static Sphere sphere(const Params& p, const drag::DragCurve& c, double d, double /*y*/) { return {p, &c, d}; }
 
   static double yield_term(const Sphere&) { return 0.0; }
+  // N s/m: with the Stokes curve D(s) = 3 pi eta d s exactly (24/Re times 1/2 rho s^2 pi d^2/4), so D(0+) = 0 and
+  // the stable kick (fluid/drag_kick.h) has the closed form of a linear drag; 0 with any other curve (then D is
+  // not linear in s and the kick iterates on magnitude()).
+  static double linear_slope(const Sphere& s) {
+    return s.curve->id == drag::CurveId::stokes ? 3.0 * 3.14159265358979323846 * s.fluid.viscosity * s.d : 0.0;
+  }
   // N; s in m/s. Re as the Bingham form with tau_y = 0 (0 + x is exact: the same bits as that form).
   static double magnitude(const Sphere& s, double speed) {
     if (speed <= 0.0) return 0.0;
