@@ -136,8 +136,7 @@ struct CheckpointAccess {
   // rebuild, for this run's thread count (the engine's bits do not depend on the partition).
   static void after_restore(World& w) {
     w.pairs_.threads = 0;
-    w.pairs_.partition(static_cast<long>(w.p_.size()) >= parallel_min_items ? omp_get_max_threads() : 1,
-                       w.x_at_rebuild_);
+    w.pairs_.partition(w.threads_for(static_cast<long>(w.p_.size())), w.x_at_rebuild_);
     w.bad_index_ = -1;
   }
   static H5Writer& h5(RunOutput& o) { return *o.h5_; }

@@ -91,17 +91,19 @@ void World::rebuild_neighbors() {
     if constexpr (requires { pass.lists_rebuilt(); })
       if (pass.active()) pass.lists_rebuilt();
   });
-  search_.build(p_.x, p_.radius, cfg_.skin, candidates_);
+  const int threads = threads_for(static_cast<long>(p_.size()));
+  search_.build(p_.x, p_.radius, cfg_.skin, candidates_, threads);
 #ifdef PASTEMIX_VALIDATE
   // Expensive check: the cell list must find exactly the brute-force pairs.
   if (brute_force_pairs(p_.x, p_.radius, cfg_.skin).i.size() != candidates_.i.size())
     throw RuntimeFailure(fmt::format("neighbour list at t = {} s disagrees with brute force", t_));
 #endif
-  pairs_.rebuild(candidates_, p_, static_cast<int>(materials_.size()));
-  wall_contacts_.rebuild(walls_, p_, t_, cfg_.skin);
+  const int pair_threads = threads_for(static_cast<long>(candidates_.i.size()));
+  pairs_.rebuild(candidates_, p_, static_cast<int>(materials_.size()), pair_threads);
+  wall_contacts_.rebuild(walls_, p_, t_, cfg_.skin, threads);
   x_at_rebuild_ = p_.x;
   // The threads' particles and pairs (slabs of the new positions), for the thread count of this build.
-  pairs_.partition(static_cast<long>(p_.size()) >= parallel_min_items ? omp_get_max_threads() : 1, p_.x);
+  pairs_.partition(threads, p_.x);
   t_at_rebuild_ = t_;
   ++profile_.rebuilds;
 }
@@ -164,6 +166,8 @@ inline void World::drift_one(long a, double& d2, long& first_bad) {
     first_bad = std::min(first_bad, a);
   d2 = std::max(d2, norm2(x - x_at_rebuild_[a]));
 }
+
+int World::threads_for(long n) const { return model::threads_for(n, cfg_.parallel_min_items); }
 
 bool World::rebuild_due(double moved2, double t) const {
   // The lists stay valid while no particle has moved more than skin/2 since their build, and, for the wall
@@ -259,8 +263,8 @@ void World::step_lane(const PassStep<Law, Roll>& s, Lane& lane, Then then, doubl
 }
 
 template <class Law, class Roll>
-void World::run_lane(const std::vector<typename Law::Params>& laws, const std::vector<typename Roll::Params>& rolling,
-                     Batch& batch) {
+void World::run_lane(const std::vector<typename Law::Params>& laws,
+                     const std::vector<typename Roll::Params>& rolling, Batch& batch) {
   Lane lane;
   lane.me = omp_get_thread_num();
   lane.threads = batch.threads;
@@ -313,7 +317,7 @@ void World::run_lane(const std::vector<typename Law::Params>& laws, const std::v
 long World::passes(long n, double h, bool initial, double& moved2) {
   Batch batch;
   batch.n = n, batch.h = h, batch.initial = initial, batch.moved2 = moved2;
-  batch.threads = static_cast<long>(p_.size()) >= parallel_min_items ? omp_get_max_threads() : 1;
+  batch.threads = threads_for(static_cast<long>(p_.size()));
   if (pairs_.threads != batch.threads) pairs_.partition(batch.threads, p_.x);
   if (batch.threads > 1) pairs_.fill_ghosts(p_);
   std::get<WallForces>(forces_).resize(batch.threads);
@@ -345,7 +349,7 @@ double World::kick_drift(double h) {
   const bool roll = kick_friction_;
   double max_d2 = 0.0;
   long bad = std::numeric_limits<long>::max();
-  const bool parallel = n >= parallel_min_items && omp_get_max_threads() > 1;
+  const bool parallel = threads_for(n) > 1;
 #pragma omp parallel for schedule(static, 256) reduction(max : max_d2) reduction(min : bad) if (parallel)
   for (long a = 0; a < n; ++a) {
     kick_one(a, h, rot, roll);

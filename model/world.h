@@ -45,6 +45,9 @@ struct WorldConfig {
   double max_escaped_fraction = 0.05;
   // Kinetic energy above this (J) is a blow-up; set by the scene from the energy the particles can have.
   double kinetic_limit = 0.0;
+  // Loops over fewer particles (or pairs) than this run on one thread (model/parallel.h); the bits do not
+  // depend on it. Tests set 0 to run the parallel paths on small scenes.
+  long parallel_min_items = 512;
 };
 
 // A particle removed at the domain boundary (on_exit = remove).
@@ -108,6 +111,8 @@ class World {
   // map and rebuilds the lists (RuntimeFailure past max_escaped_fraction).
   void remove_escaped(double& moved2);
   void rebuild_neighbors();
+  // The threads of a loop over n items (WorldConfig::parallel_min_items).
+  int threads_for(long n) const;
   // What the kick of a pass does after the forces.
   enum class Then { nothing, kick, kick_drift };
   // Force passes in one parallel region, at most `n` of them: per thread, one step() of its particles, then
