@@ -107,10 +107,11 @@ struct CheckpointAccess {
     auto& c = w.wall_contacts_;
     io(c.width), io(c.walls), io(c.start), io(c.near), io(c.history), io(c.touching);
     io(w.x_at_rebuild_), io(w.escaped_);
-    bool wet = w.fluid_ != nullptr;
+    auto& field = std::get<FluidForces>(w.forces_).field;
+    bool wet = field != nullptr;
     io(wet);
-    if (wet != (w.fluid_ != nullptr)) throw std::logic_error("checkpoint: fluid state and scene disagree");
-    if (wet) fluid_state(io, *w.fluid_);
+    if (wet != (field != nullptr)) throw std::logic_error("checkpoint: fluid state and scene disagree");
+    if (wet) fluid_state(io, *field);
   }
   template <class IO, class F>
   static void fluid_state(IO& io, F& f) {
@@ -135,8 +136,7 @@ struct CheckpointAccess {
   // rebuild, for this run's thread count (the engine's bits do not depend on the partition).
   static void after_restore(World& w) {
     w.pairs_.threads = 0;
-    w.pairs_.partition(static_cast<long>(w.p_.size()) >= parallel_min_items ? omp_get_max_threads() : 1,
-                       w.x_at_rebuild_);
+    w.pairs_.partition(w.threads_for(static_cast<long>(w.p_.size())), w.x_at_rebuild_);
     w.bad_index_ = -1;
   }
   static H5Writer& h5(RunOutput& o) { return *o.h5_; }

@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "model/contacts.h"
 
-#include "model/parallel.h"
 
 #include <algorithm>
 #include <variant>
@@ -240,7 +239,7 @@ void WallContacts::resize(std::size_t particles, int n_walls, int history_width)
   touching.clear();
 }
 
-void WallContacts::rebuild(const std::vector<Wall>& w, const Particles& p, double t, double skin) {
+void WallContacts::rebuild(const std::vector<Wall>& w, const Particles& p, double t, double skin, int threads) {
   const std::size_t n = p.size();
   const std::size_t nw = w.size();
   std::vector<Vec3> shift(nw);
@@ -259,7 +258,7 @@ void WallContacts::rebuild(const std::vector<Wall>& w, const Particles& p, doubl
   std::vector<std::uint16_t>& new_near = spare_near_;
   std::vector<double>& new_hist = spare_hist_;
   std::vector<std::uint32_t>& new_touch = spare_touch_;
-#pragma omp parallel if (nn >= parallel_min_items)
+#pragma omp parallel num_threads(threads)
   {
 #pragma omp for schedule(static)
     for (long a = 0; a < nn; ++a) {
@@ -326,7 +325,7 @@ void WallContacts::remove_particles(const std::vector<std::uint32_t>& map) {
   history.resize(out * wd);
 }
 
-void PairList::rebuild(CandidatePairs& c, const Particles& p, int n_materials) {
+void PairList::rebuild(CandidatePairs& c, const Particles& p, int n_materials, int loop_threads) {
   const std::size_t n = c.i.size();
   // The new history and flags go into the spare buffers (their capacity kept between rebuilds).
   std::vector<double>& new_hist = spare_hist;
@@ -343,7 +342,7 @@ void PairList::rebuild(CandidatePairs& c, const Particles& p, int n_materials) {
   // order), so the stored spring needs no sign flip.
   const bool carry = !start.empty() && width > 0;
   const long nn = static_cast<long>(n);
-#pragma omp parallel for schedule(static) if (nn >= parallel_min_items)
+#pragma omp parallel for schedule(static) num_threads(loop_threads)
   for (long k = 0; k < nn; ++k) {
     const std::uint32_t a = c.i[k], b = c.j[k];
     r_star[k] = p.radius[a] * p.radius[b] / (p.radius[a] + p.radius[b]);

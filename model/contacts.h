@@ -73,7 +73,8 @@ struct PairList {
 
   std::size_t size() const { return i.size(); }
   // Replaces the pairs by `c`, carrying over the history of pairs present before (c gets the old arrays).
-  void rebuild(CandidatePairs& c, const Particles& p, int n_materials);
+  // loop_threads: of its loop (model/parallel.h); the result does not depend on it.
+  void rebuild(CandidatePairs& c, const Particles& p, int n_materials, int loop_threads);
   // Splits the particles (positions x) into `threads` slabs of about equal cost (particles, pairs,
   // touching pairs) across the longest side of their bounding box.
   void partition(int threads, const std::vector<Vec3>& x);
@@ -104,7 +105,7 @@ struct WallContacts {
   void resize(std::size_t particles, int n_walls, int history_width);
   // Rebuilds the candidate lists at time t (walls at their positions then), carrying over the history of
   // candidates that stay; a (particle, wall) that is no longer a candidate is not touching, so it has none.
-  void rebuild(const std::vector<Wall>& walls, const Particles& p, double t, double skin);
+  void rebuild(const std::vector<Wall>& walls, const Particles& p, double t, double skin, int threads);
   // Particles were removed (map as PairList::remove_particles): drops their candidates, keeps the others'.
   void remove_particles(const std::vector<std::uint32_t>& map);
 

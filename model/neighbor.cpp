@@ -23,13 +23,13 @@ long NeighborSearch::Level::clamp_cell(double v, int axis) const {
 }
 
 void NeighborSearch::build(const std::vector<Vec3>& x, const std::vector<double>& radius, double skin,
-                           CandidatePairs& out) {
+                           CandidatePairs& out, int threads) {
   const std::size_t n = x.size();
   out.i.clear();
   out.j.clear();
   if (n < 2) return;
   const long nn = static_cast<long>(n);
-  const int nthreads = nn >= parallel_min_items ? omp_get_max_threads() : 1;
+  const int nthreads = threads;
   level_of_.resize(n);
   cell_id_.resize(n);
   slot_.resize(n);
@@ -199,7 +199,7 @@ void NeighborSearch::build(const std::vector<Vec3>& x, const std::vector<double>
 CandidatePairs build_pairs(const std::vector<Vec3>& x, const std::vector<double>& radius, double skin) {
   NeighborSearch search;
   CandidatePairs out;
-  search.build(x, radius, skin, out);
+  search.build(x, radius, skin, out, threads_for(static_cast<long>(x.size()), kParallelMinItems));
   return out;
 }
 

@@ -32,7 +32,9 @@ struct CandidatePairs {
 class NeighborSearch {
  public:
   // Replaces `out` by the pairs of x / radius closer than r_i + r_j + skin.
-  void build(const std::vector<Vec3>& x, const std::vector<double>& radius, double skin, CandidatePairs& out);
+  // threads: of its loops (model/parallel.h; 1 for a small list); the pairs do not depend on it.
+  void build(const std::vector<Vec3>& x, const std::vector<double>& radius, double skin, CandidatePairs& out,
+             int threads);
 
   // One grid level: the particles whose radius falls in one size class, counting-sorted into cells of
   // 2 r_max(level) + skin.

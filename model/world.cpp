@@ -21,13 +21,13 @@
 // |omega| shrinks by h M/I). That is the explicit law's own torque whenever the spin survives the step,
 // and it removes the chatter at omega -> 0 that makes piles under the raw law never come to rest.
 //
-// Fluid hook (model/fluid/field.h, only with [[fluid]]): after the forces at t + dt, fluid->update() finds
-// the particles in a region and their submerged volumes (and raises the surface); the half kicks of those
-// particles are replaced by the fluid kick (buoyancy + drag integrated stably, never reversing v). The
-// update and these particles' kicks and drifts are the fluid pass, timed on its own profile line: each
-// thread skips its particles inside a region in the per-particle sweep and then kicks and drifts them, in
-// ascending order, from the field's member list (each particle's operations are its own, so the order of
-// the particles does not change a bit).
+// Forces are passes (forces/force_pass.h, listed in forces/registry.h): gravity (a body acceleration, a term
+// of the kick), the walls (forces added per particle after the pair sum) and the fluid (forces/fluid_forces.h,
+// only with [[fluid]]: before the pair pass the field finds the particles in a region and their submerged
+// volumes; the plain kick skips them and the pass kicks and drifts them, in ascending order, from the field's
+// member list, with buoyancy + drag integrated stably, never reversing v). Each pass is timed on its own
+// profile line. A particle's operations are its own and keep their order (pair sum, wall forces, one kick),
+// so running them as separate sweeps over the particles changes no bit.
 //
 // Outflow (on_exit = "remove"): a drift that takes a particle out of the domain flags it, as it flags a NaN,
 // and the batch of passes stops at the step's barrier (advance() then handles it between passes: positions
@@ -43,6 +43,7 @@
 // count (and for any batching of steps into advance()).
 #include "model/world.h"
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -75,6 +76,10 @@ World::World(WorldConfig config, std::vector<Material> materials, LawTable laws,
   kick_friction_ = std::visit([](const auto& r) { return LawOf<decltype(r)>::kick_friction; }, rolling_);
   pairs_.width = history_width;
   wall_contacts_.resize(p_.size(), static_cast<int>(walls_.size()), history_width);
+  // The passes' settings from the scene (the fluid pass: set_fluid()).
+  std::get<Gravity>(forces_).g = cfg_.gravity;
+  std::get<WallForces>(forces_).any = !walls_.empty();
+  accel_ = body_acceleration(forces_);
 }
 
 // Pairs and wall candidates are rebuilt together, with the same skin: the wall lists cost one distance per
@@ -82,28 +87,34 @@ World::World(WorldConfig config, std::vector<Material> materials, LawTable laws,
 // bed: 2,837 wall candidates with a 1 mm skin against 6,114 with 5 mm). Which candidates a list holds never
 // changes a force: a pair or wall contact is computed whenever it touches, and every touching one is listed.
 void World::rebuild_neighbors() {
-  if (fluid_) fluid_->mark_stale();  // fluid candidates: no particle has moved skin/2 since this rebuild
-  search_.build(p_.x, p_.radius, cfg_.skin, candidates_);
+  for_each_pass(forces_, [](auto& pass) {
+    if constexpr (requires { pass.lists_rebuilt(); })
+      if (pass.active()) pass.lists_rebuilt();
+  });
+  const int threads = threads_for(static_cast<long>(p_.size()));
+  search_.build(p_.x, p_.radius, cfg_.skin, candidates_, threads);
 #ifdef PASTEMIX_VALIDATE
   // Expensive check: the cell list must find exactly the brute-force pairs.
   if (brute_force_pairs(p_.x, p_.radius, cfg_.skin).i.size() != candidates_.i.size())
     throw RuntimeFailure(fmt::format("neighbour list at t = {} s disagrees with brute force", t_));
 #endif
-  pairs_.rebuild(candidates_, p_, static_cast<int>(materials_.size()));
-  wall_contacts_.rebuild(walls_, p_, t_, cfg_.skin);
+  const int pair_threads = threads_for(static_cast<long>(candidates_.i.size()));
+  pairs_.rebuild(candidates_, p_, static_cast<int>(materials_.size()), pair_threads);
+  wall_contacts_.rebuild(walls_, p_, t_, cfg_.skin, threads);
   x_at_rebuild_ = p_.x;
   // The threads' particles and pairs (slabs of the new positions), for the thread count of this build.
-  pairs_.partition(static_cast<long>(p_.size()) >= parallel_min_items ? omp_get_max_threads() : 1, p_.x);
+  pairs_.partition(threads, p_.x);
   t_at_rebuild_ = t_;
   ++profile_.rebuilds;
 }
 
 // Half kick of one particle: v += h a; omega += h tau / I, then the non-reversing rolling friction.
 inline void World::kick_one(long a, double h, bool rot, bool roll) {
-  if (fluid_ && fluid_->inside(a))  // fluid hook
-    p_.v[a] = fluid_->kick(a, p_.v[a], p_.f[a] + cfg_.gravity * p_.mass[a], p_.mass[a], p_.radius[a], h, cfg_.gravity);
-  else
-    p_.v[a] += (p_.f[a] * p_.inv_mass[a] + cfg_.gravity) * h;
+  // A kick pass (the fluid) owns the kick of the particles it claims; the force it is given includes m g.
+  const bool claimed = with_kick_pass(forces_, a, [&](const auto& pass) {
+    p_.v[a] = pass.kick(a, p_.v[a], p_.f[a] + accel_ * p_.mass[a], p_.mass[a], p_.radius[a], h, accel_);
+  });
+  if (!claimed) p_.v[a] += (p_.f[a] * p_.inv_mass[a] + accel_) * h;
   if (rot) {
     Vec3 w = p_.omega[a] + p_.torque[a] * (h * p_.inv_inertia[a]);
     if (roll && p_.rolling_capacity[a] > 0.0) {
@@ -118,12 +129,12 @@ inline void World::kick_one(long a, double h, bool rot, bool roll) {
 // The closing half kick of a step and the opening half kick of the next (the same force): kick_one twice,
 // with the shared factors computed once and v, omega kept in registers in between (the same bits).
 inline void World::kick_twice(long a, double h, bool rot, bool roll) {
-  if (fluid_ && fluid_->inside(a)) {
+  if (with_kick_pass(forces_, a, [](const auto&) {})) {
     kick_one(a, h, rot, roll);
     kick_one(a, h, rot, roll);
     return;
   }
-  const Vec3 dv = (p_.f[a] * p_.inv_mass[a] + cfg_.gravity) * h;
+  const Vec3 dv = (p_.f[a] * p_.inv_mass[a] + accel_) * h;
   Vec3 v = p_.v[a];
   v += dv;
   v += dv;
@@ -156,6 +167,8 @@ inline void World::drift_one(long a, double& d2, long& first_bad) {
   d2 = std::max(d2, norm2(x - x_at_rebuild_[a]));
 }
 
+int World::threads_for(long n) const { return model::threads_for(n, cfg_.parallel_min_items); }
+
 bool World::rebuild_due(double moved2, double t) const {
   // The lists stay valid while no particle has moved more than skin/2 since their build, and, for the wall
   // candidates, particle plus wall motion stays below skin/2; a wall's motion is |v| (t - t_build); a
@@ -167,143 +180,165 @@ bool World::rebuild_due(double moved2, double t) const {
   return moved2 > half * half || (wall_move > 0.0 && std::sqrt(moved2) + wall_move > half);
 }
 
-long World::passes(long n, double h, bool initial, double& moved2) {
-  const long np = static_cast<long>(p_.size());
-  const int threads = np >= parallel_min_items ? omp_get_max_threads() : 1;
-  if (pairs_.threads != threads) pairs_.partition(threads, p_.x);
-  if (threads > 1) pairs_.fill_ghosts(p_);
-  wall_state_.resize(static_cast<std::size_t>(threads));
-  for (auto& r : results_) r.resize(static_cast<std::size_t>(threads));
-  const bool rot = p_.has_rotation;
-  const bool roll = kick_friction_;
-  const bool has_walls = !walls_.empty();
-  const int n_materials = static_cast<int>(materials_.size());
+// What passes() hands its threads and what thread 0 hands back.
+struct World::Batch {
+  long n = 0;
+  double h = 0.0;
+  bool initial = false;
+  int threads = 1;
+  double moved2 = 0.0;
   long done = 0, drifts = 0;
-  double t_end = t_, d2_end = moved2;
+  double t_end = 0.0, d2_end = 0.0;
   long bad_end = std::numeric_limits<long>::max();
-  int parity_end = pairs_.parity;
-  double pair_s = 0.0, particle_s = 0.0, fluid_s = 0.0, wait_s = 0.0;
-  const bool wet = fluid_ != nullptr;
+  int parity_end = 0;
+  std::array<double, Profile::count> seconds{};  // s, thread 0's stages
+};
+
+// One thread's part of a batch: its particles, the ghost buffer it reads, the drift results of this step,
+// and (thread 0) the clock of the stage being timed.
+struct World::Lane {
+  int me = 0, threads = 1, cur = 0;
+  bool rot = false, roll = false;
+  const std::uint32_t* own = nullptr;  // null with one thread: every particle
+  long n_own = 0;
+  double d2 = 0.0;
+  long bad = std::numeric_limits<long>::max();
+  std::array<double, Profile::count>* seconds = nullptr;  // thread 0 only
+  Clock::time_point lap;
+  long particle(long q) const { return own ? static_cast<long>(own[q]) : q; }
+  // Thread 0: the time since the last lap goes to `stage`.
+  void time(Profile::Stage stage) {
+    if (!seconds) return;
+    const auto now = Clock::now();
+    (*seconds)[stage] += std::chrono::duration<double>(now - lap).count();
+    lap = now;
+  }
+};
+
+// The closing half kick of particle a, and with Then::kick_drift the next opening half kick and drift.
+inline void World::close_kick(Lane& lane, long a, Then then, double h) {
+  if (then == Then::kick) {
+    kick_one(a, h, lane.rot, lane.roll);
+    return;
+  }
+  kick_twice(a, h, lane.rot, lane.roll);
+  drift_one(a, lane.d2, lane.bad);
+  // The state the other threads read in the next pass (cross pairs).
+  if (lane.threads > 1 && pairs_.ghost_of[a] != PairList::kNone)
+    pairs_.ghost[lane.cur ^ 1][pairs_.ghost_of[a]] = {p_.x[a], p_.v[a], lane.rot ? p_.omega[a] : Vec3{}};
+}
+
+template <class Law, class Roll>
+void World::step_lane(const PassStep<Law, Roll>& s, Lane& lane, Then then, double h) {
+  for_each_pass(forces_, [&](auto& pass) {
+    if constexpr (requires { pass.prepare(s); })
+      if (pass.active()) pass.prepare(s), lane.time(pass.info.stage);
+  });
+  pair_forces(laws_, rolling_, s.ctx, p_, pairs_, lane.me, lane.cur);
+  lane.time(Profile::contact_forces);
+  // Per owned particle, after its pair sum: the force passes in list order (walls: in wall order).
+  for_each_pass(forces_, [&](auto& pass) {
+    if constexpr ((std::decay_t<decltype(pass)>::info.adds & (adds::force | adds::torque | adds::rolling_capacity)) != 0)
+      if (pass.active()) {
+        for (long q = 0; q < lane.n_own; ++q) pass.add(s, lane.particle(q));
+        lane.time(pass.info.stage);
+      }
+  });
+  if (then == Then::nothing) return;
+  for (long q = 0; q < lane.n_own; ++q) {
+    const long a = lane.particle(q);
+    if (!with_kick_pass(forces_, a, [](const auto&) {})) close_kick(lane, a, then, h);
+  }
+  lane.time(Profile::kick);
+  // The kick passes' particles, ascending, each by its owner (its operations are its own: any order of the
+  // particles gives the same bits).
+  for_each_pass(forces_, [&](auto& pass) {
+    if constexpr ((std::decay_t<decltype(pass)>::info.adds & adds::kick) != 0)
+      if (pass.active()) {
+        for (long a : pass.members())
+          if (lane.threads == 1 || pairs_.owner[static_cast<std::size_t>(a)] == lane.me) close_kick(lane, a, then, h);
+        lane.time(pass.info.stage);
+      }
+  });
+}
+
+template <class Law, class Roll>
+void World::run_lane(const std::vector<typename Law::Params>& laws,
+                     const std::vector<typename Roll::Params>& rolling, Batch& batch) {
+  Lane lane;
+  lane.me = omp_get_thread_num();
+  lane.threads = batch.threads;
+  lane.cur = pairs_.parity;
+  lane.rot = p_.has_rotation;
+  lane.roll = kick_friction_;
+  const bool master = lane.me == 0;
+  if (batch.threads > 1) {
+    const auto& own = pairs_.own[static_cast<std::size_t>(lane.me)];
+    lane.own = own.data(), lane.n_own = static_cast<long>(own.size());
+  } else {
+    lane.n_own = static_cast<long>(p_.size());
+  }
+  if (master) lane.seconds = &batch.seconds, lane.lap = Clock::now();
+  const int n_materials = static_cast<int>(materials_.size());
+  double t = t_;  // every thread advances its own copy: the same additions, the same bits
+  long done = 0, drifts = 0;
+  double d2_all = batch.moved2;
+  long bad_all = std::numeric_limits<long>::max();
+  for (;;) {
+    const StepContext ctx{t, cfg_.dt, n_materials};
+    const PassStep<Law, Roll> s{laws, rolling, ctx, walls_, wall_contacts_, p_, pairs_, lane.me};
+    const Then then = batch.initial ? Then::nothing : (done + 1 < batch.n ? Then::kick_drift : Then::kick);
+    lane.d2 = 0.0, lane.bad = std::numeric_limits<long>::max();
+    step_lane(s, lane, then, batch.h);
+    ++done;
+    lane.cur ^= 1;  // the cross pairs' history just written
+    if (then != Then::kick_drift) break;  // the end of the region is the barrier
+    // The next step has begun: its positions are needed by every thread, and its displacement and domain
+    // results by the rebuild decision, which every thread takes alike.
+    ++drifts;
+    auto& slot = results_[done & 1];
+    slot[static_cast<std::size_t>(lane.me)] = {lane.d2, lane.bad};
+#pragma omp barrier
+    lane.time(Profile::wait);
+    d2_all = 0.0;
+    for (const auto& r : slot) {
+      d2_all = std::max(d2_all, r.d2);
+      bad_all = std::min(bad_all, r.bad);
+    }
+    t += cfg_.dt;
+    if (bad_all != std::numeric_limits<long>::max() || rebuild_due(d2_all, t)) break;
+  }
+  if (master) {
+    batch.done = done, batch.drifts = drifts, batch.t_end = t;
+    batch.d2_end = d2_all, batch.bad_end = bad_all, batch.parity_end = lane.cur;
+  }
+}
+
+long World::passes(long n, double h, bool initial, double& moved2) {
+  Batch batch;
+  batch.n = n, batch.h = h, batch.initial = initial, batch.moved2 = moved2;
+  batch.threads = threads_for(static_cast<long>(p_.size()));
+  if (pairs_.threads != batch.threads) pairs_.partition(batch.threads, p_.x);
+  if (batch.threads > 1) pairs_.fill_ghosts(p_);
+  std::get<WallForces>(forces_).resize(batch.threads);
+  for (auto& r : results_) r.resize(static_cast<std::size_t>(batch.threads));
   std::visit(
       [&](const auto& table, const auto& rolling) {
         using Law = LawOf<decltype(table)>;
         using Roll = LawOf<decltype(rolling)>;
-#pragma omp parallel num_threads(threads)
-        {
-          const int me = omp_get_thread_num();
-          const bool master = me == 0;
-          // Thread 0 alone: every particle; several: the thread's own, ascending.
-          const std::uint32_t* own = threads > 1 ? pairs_.own[static_cast<std::size_t>(me)].data() : nullptr;
-          const long n_own = threads > 1 ? static_cast<long>(pairs_.own[static_cast<std::size_t>(me)].size()) : np;
-          WallState& ws = wall_state_[static_cast<std::size_t>(me)];
-          double t = t_;  // every thread advances its own copy: the same additions, the same bits
-          int cur = pairs_.parity;
-          long my_done = 0, my_drifts = 0;
-          double d2_all = moved2;
-          long bad_all = std::numeric_limits<long>::max();
-          for (;;) {
-            const auto c0 = Clock::now();
-            // The fluid update reads the positions of every particle (all drifted: the barrier) and must
-            // precede every kick; one thread, then the barrier of `single`.
-            if (fluid_) {
-#pragma omp single
-              fluid_->update(p_, &pairs_.i, &pairs_.j);
-            }
-            const auto cf = Clock::now();
-            ws.update(walls_, t);
-            const StepContext ctx{t, cfg_.dt, n_materials};
-            const Then then = initial ? Then::nothing : (my_done + 1 < n ? Then::kick_drift : Then::kick);
-            pair_forces(laws_, rolling_, ctx, p_, pairs_, me, cur);
-            const auto c1 = Clock::now();
-            double d2 = 0.0;
-            long bad = std::numeric_limits<long>::max();
-            // The closing half kick (and the next opening half kick and drift) of particle a. h and roll by
-            // value: clang (the fuzz build) rejects their implicit capture inside std::visit's lambda and the
-            // OpenMP region ("reference to local variable declared in enclosing function").
-            auto close_kick = [&, h, roll](long a) {
-              if (then == Then::kick) {
-                kick_one(a, h, rot, roll);
-                return;
-              }
-              kick_twice(a, h, rot, roll);
-              drift_one(a, d2, bad);
-              // The state the other threads read in the next pass (cross pairs).
-              if (threads > 1 && pairs_.ghost_of[a] != PairList::kNone)
-                pairs_.ghost[cur ^ 1][pairs_.ghost_of[a]] = {p_.x[a], p_.v[a], rot ? p_.omega[a] : Vec3{}};
-            };
-            // Per owned particle, in this order: pair forces (summed above), wall forces in wall order,
-            // then the half kick (and the next opening half kick and drift): the same operations in the
-            // same order as separate passes, one sweep of memory.
-            for (long q = 0; q < n_own; ++q) {
-              const long a = own ? own[q] : q;
-              if (has_walls && wall_contacts_.start[a] != wall_contacts_.start[a + 1]) {
-                Vec3 f = p_.f[a], tq;
-                double rc = 0.0;
-                if (rot) {
-                  tq = p_.torque[a];
-                  rc = p_.rolling_capacity[a];
-                }
-                wall_forces_one<Law, Roll>(table, rolling, ctx, walls_, ws, p_, wall_contacts_,
-                                           static_cast<std::size_t>(a), f, tq, rc);
-                p_.f[a] = f;
-                if (rot) {
-                  p_.torque[a] = tq;
-                  p_.rolling_capacity[a] = rc;
-                }
-              }
-              if (then == Then::nothing || (wet && fluid_->inside(a))) continue;  // fluid: below
-              close_kick(a);
-            }
-            const auto c2 = Clock::now();
-            if (wet && then != Then::nothing)
-              for (long a : fluid_->members())
-                if (threads == 1 || pairs_.owner[static_cast<std::size_t>(a)] == me) close_kick(a);
-            const auto c3 = Clock::now();
-            ++my_done;
-            cur ^= 1;  // the cross pairs' history just written
-            if (master) {
-              pair_s += std::chrono::duration<double>(c1 - cf).count();
-              particle_s += std::chrono::duration<double>(c2 - c1).count();
-              fluid_s += std::chrono::duration<double>(cf - c0).count() + std::chrono::duration<double>(c3 - c2).count();
-            }
-            if (then != Then::kick_drift) break;  // the end of the region is the barrier
-            // The next step has begun: its positions are needed by every thread, and its displacement and
-            // domain results by the rebuild decision, which every thread takes alike.
-            ++my_drifts;
-            auto& slot = results_[my_done & 1];
-            slot[static_cast<std::size_t>(me)] = {d2, bad};
-#pragma omp barrier
-            if (master) wait_s += std::chrono::duration<double>(Clock::now() - c2).count();
-            d2_all = 0.0;
-            for (const auto& r : slot) {
-              d2_all = std::max(d2_all, r.d2);
-              bad_all = std::min(bad_all, r.bad);
-            }
-            t += cfg_.dt;
-            if (bad_all != std::numeric_limits<long>::max() || rebuild_due(d2_all, t)) break;
-          }
-          if (master) {
-            done = my_done;
-            drifts = my_drifts;
-            t_end = t;
-            d2_end = d2_all;
-            bad_end = bad_all;
-            parity_end = cur;
-          }
-        }
+#pragma omp parallel num_threads(batch.threads)
+        run_lane<Law, Roll>(table, rolling, batch);
       },
       laws_, rolling_);
-  pairs_.parity = parity_end;
+  pairs_.parity = batch.parity_end;
   pairs_.sync_cross();
-  t_ = t_end;
-  steps_ += drifts;
-  moved2 = d2_end;
-  if (bad_end != std::numeric_limits<long>::max() && bad_index_ < 0) bad_index_ = bad_end;
-  profile_.seconds[Profile::contact_forces] += pair_s;
-  profile_.seconds[Profile::walls_kick] += particle_s;
-  profile_.seconds[Profile::fluid] += fluid_s;
-  profile_.seconds[Profile::wait] += wait_s;
-  return done;
+  t_ = batch.t_end;
+  steps_ += batch.drifts;
+  moved2 = batch.d2_end;
+  if (batch.bad_end != std::numeric_limits<long>::max() && bad_index_ < 0) bad_index_ = batch.bad_end;
+  for (int k : {Profile::contact_forces, Profile::walls, Profile::kick, Profile::fluid, Profile::wait})
+    profile_.seconds[k] += batch.seconds[k];
+  return batch.done;
 }
 
 // First half kick and drift in one loop, with the domain check and the displacement since the last
@@ -314,7 +349,7 @@ double World::kick_drift(double h) {
   const bool roll = kick_friction_;
   double max_d2 = 0.0;
   long bad = std::numeric_limits<long>::max();
-  const bool parallel = n >= parallel_min_items && omp_get_max_threads() > 1;
+  const bool parallel = threads_for(n) > 1;
 #pragma omp parallel for schedule(static, 256) reduction(max : max_d2) reduction(min : bad) if (parallel)
   for (long a = 0; a < n; ++a) {
     kick_one(a, h, rot, roll);
@@ -406,7 +441,10 @@ void World::remove_escaped(double& moved2) {
   const std::vector<std::uint32_t> map = p_.remove_if(gone);
   pairs_.remove_particles(map, p_.size());
   wall_contacts_.remove_particles(map);
-  if (fluid_) fluid_->particles_removed();
+  for_each_pass(forces_, [](auto& pass) {
+    if constexpr (requires { pass.particles_removed(); })
+      if (pass.active()) pass.particles_removed();
+  });
   rebuild_neighbors();
   moved2 = 0.0;
 }

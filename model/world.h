@@ -3,7 +3,6 @@
 // See the design essay at the top of world.cpp.
 #pragma once
 
-#include <array>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -11,27 +10,15 @@
 
 #include "model/contacts.h"
 #include "model/fluid/field.h"
+#include "model/forces/registry.h"
 #include "model/material.h"
 #include "model/particles.h"
+#include "model/profile.h"
 #include "model/walls.h"
 
 namespace pastemix::model {
 
 struct CheckpointAccess;
-
-// Wall-clock seconds spent per stage, as seen by thread 0 (the order is the order of the step):
-// kick_drift = the first half kick and drift of a batch of steps (World::advance; the later ones are fused
-// into walls_kick); neighbor = list rebuilds; contact_forces = the pair pass; walls_kick = the per-particle
-// pass (wall forces, closing half kick, next opening half kick and drift) of the particles outside every
-// fluid region; fluid = the fluid pass (the field's update, then the fluid kicks and drifts of the particles
-// inside a region); wait = thread 0 waiting at the step's barrier for the other threads.
-struct Profile {
-  enum Stage { kick_drift, neighbor, contact_forces, walls_kick, fluid, wait, output, count };
-  static constexpr std::array<const char*, count> names{"kick_drift", "neighbor", "contact_forces", "walls_kick",
-                                                        "fluid",      "wait",     "output"};
-  std::array<double, count> seconds{};
-  long rebuilds = 0;
-};
 
 struct Energies {
   double kinetic = 0.0;      // J, translational
@@ -58,6 +45,9 @@ struct WorldConfig {
   double max_escaped_fraction = 0.05;
   // Kinetic energy above this (J) is a blow-up; set by the scene from the energy the particles can have.
   double kinetic_limit = 0.0;
+  // Loops over fewer particles (or pairs) than this run on one thread (model/parallel.h); the bits do not
+  // depend on it. Tests set 0 to run the parallel paths on small scenes.
+  long parallel_min_items = 512;
 };
 
 // A particle removed at the domain boundary (on_exit = remove).
@@ -96,14 +86,15 @@ class World {
   const std::vector<Material>& materials() const { return materials_; }
   const PairList& pairs() const { return pairs_; }
   Profile& profile() { return profile_; }
-  // --- fluid hook (model/fluid/field.h): null without [[fluid]] -> no fluid pass, nothing to pay. ---
+  // --- the fluid pass (forces/fluid_forces.h): null without [[fluid]] -> no fluid pass, nothing to pay. ---
   // The field visits only particles within the Verlet skin of a region (its candidate list, refreshed at
   // every pair-list rebuild): particles far from the paste pay one flag read per step.
   void set_fluid(std::shared_ptr<fluid::FluidField> field) {
-    fluid_ = std::move(field);
-    if (fluid_) fluid_->set_candidate_margin(cfg_.skin), fluid_->set_step(cfg_.dt, cfg_.gravity);
+    auto& f = std::get<FluidForces>(forces_).field;
+    f = std::move(field);
+    if (f) f->set_candidate_margin(cfg_.skin), f->set_step(cfg_.dt, cfg_.gravity);
   }
-  const fluid::FluidField* fluid() const { return fluid_.get(); }
+  const fluid::FluidField* fluid() const { return std::get<FluidForces>(forces_).field.get(); }
   const Profile& profile() const { return profile_; }
   // Particles removed at the domain boundary (on_exit = remove), in the order of removal, and their mass.
   const std::vector<Escape>& escaped() const { return escaped_; }
@@ -120,14 +111,26 @@ class World {
   // map and rebuilds the lists (RuntimeFailure past max_escaped_fraction).
   void remove_escaped(double& moved2);
   void rebuild_neighbors();
-  // What the per-particle pass after the forces does besides summing them.
+  // The threads of a loop over n items (WorldConfig::parallel_min_items).
+  int threads_for(long n) const;
+  // What the kick of a pass does after the forces.
   enum class Then { nothing, kick, kick_drift };
-  // Force passes in one parallel region, at most `n` of them: per thread, its pair forces, then per owned
-  // particle its wall forces, the closing half kick and (Then::kick_drift, all but the n-th pass) the next
-  // step's opening half kick and drift; then the one barrier of the step. Stops after a pass that leaves
+  // Force passes in one parallel region, at most `n` of them: per thread, one step() of its particles, then
+  // (Then::kick_drift, all but the n-th pass) the one barrier of the step. Stops after a pass that leaves
   // a rebuild due or a particle bad (moved2 = the largest squared displacement since the last rebuild).
   // initial: one pass without kick (the forces at t = 0). Returns the number of passes.
   long passes(long n, double h, bool initial, double& moved2);
+  struct Lane;  // one thread's part of passes() (world.cpp)
+  struct Batch;  // what passes() hands its threads and gets back
+  template <class Law, class Roll>
+  void run_lane(const std::vector<typename Law::Params>& laws, const std::vector<typename Roll::Params>& rolling,
+                Batch& batch);
+  // One step of thread lane.me: the passes' prepare(), the pair pass, the force passes, the plain kicks of
+  // the unclaimed particles, the kick passes; each timed on its profile line (thread 0).
+  template <class Law, class Roll>
+  void step_lane(const PassStep<Law, Roll>& s, Lane& lane, Then then, double h);
+  // The closing half kick of particle a (and the next opening half kick and drift, Then::kick_drift).
+  void close_kick(Lane& lane, long a, Then then, double h);
   // Whether the lists must be rebuilt at time t, the particles having moved sqrt(moved2) since the last.
   bool rebuild_due(double moved2, double t) const;
   void kick_one(long a, double h, bool rot, bool roll);
@@ -146,7 +149,8 @@ class World {
   std::vector<Wall> walls_;
   PairList pairs_;
   WallContacts wall_contacts_;
-  std::vector<WallState> wall_state_;  // per thread
+  ForcePasses forces_;  // forces/registry.h: gravity, walls, fluid
+  Vec3 accel_;          // m/s2, the passes' body acceleration (gravity)
   NeighborSearch search_;
   CandidatePairs candidates_;          // the neighbour search's output, kept for its capacity
   // Per thread and step parity: largest squared displacement and first bad particle of its block; padded
@@ -164,7 +168,6 @@ class World {
   bool started_ = false;
   // First problem found during a step (dense index, or -1) and its cause, reported by check().
   mutable long bad_index_ = -1;
-  std::shared_ptr<fluid::FluidField> fluid_;  // fluid hook
   std::vector<Escape> escaped_;
   double escaped_mass_ = 0.0;  // kg
 };

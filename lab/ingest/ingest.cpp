@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "base/error.h"
+#include "base/stats.h"
 #include "base/suggest.h"
 #include "base/units.h"
 
@@ -105,6 +106,21 @@ std::string format_value(double value) {
   const int magnitude = static_cast<int>(std::floor(std::log10(std::abs(value))));
   const int decimals = std::max(0, 3 - magnitude);
   return fmt::format("{:.{}f}", value, decimals);
+}
+
+Parameter summary_parameter(const std::string& key, const std::vector<double>& values, const std::string& unit,
+                            const std::string& method, const std::string& source) {
+  const Summary s = summarize(values);
+  Parameter p;
+  p.key = key;
+  p.value = s.mean;
+  p.sd = s.sd;
+  p.n = s.n;
+  p.unit = unit;
+  p.method = method;
+  p.provenance = Provenance::measured;
+  p.source = source;
+  return p;
 }
 
 }  // namespace pastemix::lab

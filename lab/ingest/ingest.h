@@ -76,6 +76,11 @@ void check_plausible(const CsvTable& table, const CsvTable::Row& row, std::strin
 // may lie from the exact one through rounding alone.
 double rounding_tolerance(std::string_view cell);
 
+// A measured parameter that summarises repeated values (base/stats.h summarize: mean, sample sd, count),
+// with its SI unit, how it was obtained and the input file; the caller adds the trials where it keeps them.
+Parameter summary_parameter(const std::string& key, const std::vector<double>& values, const std::string& unit,
+                            const std::string& method, const std::string& source);
+
 // "file:line" for warnings.
 std::string where(const CsvTable& table, const CsvTable::Row& row);
 

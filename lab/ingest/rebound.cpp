@@ -5,7 +5,6 @@
 
 #include <fmt/format.h>
 
-#include "base/stats.h"
 #include "lab/ingest/printed.h"
 
 namespace pastemix::lab {
@@ -44,32 +43,16 @@ IngestResult ingest_rebound(const CsvTable& t, const ColumnUnits& units) {
     e.push_back(std::sqrt(hr / hf));
     compare_printed(t, row, "restitution_coefficient", e.back(), "restitution", out.warnings);
   }
-  const Summary s = summarize(e);
-  compare_printed_mean(t, "restitution_coefficient_mean", s.mean, "restitution", out.warnings);
-  Parameter p;
-  p.key = "steel_ball.restitution";
-  p.value = s.mean;
-  p.sd = s.sd;
-  p.n = s.n;
-  p.unit = std::string("-");  // (a temporary: GCC 12 warns falsely, -Wrestrict, on a 1-char literal)
-  p.method = "rebound (drop) test, steel ball on steel plate, e = sqrt(H_r/H_f); mean over drop heights";
-  p.source = t.path();
+  Parameter p = summary_parameter("steel_ball.restitution", e, "-",
+                                  "rebound (drop) test, steel ball on steel plate, e = sqrt(H_r/H_f); mean over "
+                                  "drop heights",
+                                  t.path());
+  compare_printed_mean(t, "restitution_coefficient_mean", p.value, "restitution", out.warnings);
   p.trials = e;
   out.parameters.push_back(p);
-  auto constant = [&](const char* key, const std::vector<double>& v, const char* unit) {
-    const Summary c = summarize(v);
-    Parameter q;
-    q.key = key;
-    q.value = c.mean;
-    q.sd = c.sd;
-    q.n = c.n;
-    q.unit = unit;
-    q.method = "as recorded with the rebound tests";
-    q.source = t.path();
-    out.parameters.push_back(q);
-  };
-  constant("steel_ball.diameter", diameter, "m");
-  constant("steel_ball.density", density, "kg/m3");
+  const char* recorded = "as recorded with the rebound tests";
+  out.parameters.push_back(summary_parameter("steel_ball.diameter", diameter, "m", recorded, t.path()));
+  out.parameters.push_back(summary_parameter("steel_ball.density", density, "kg/m3", recorded, t.path()));
   return out;
 }
 

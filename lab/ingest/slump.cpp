@@ -115,30 +115,14 @@ IngestResult ingest_slump(const CsvTable& t, const ColumnUnits& units) {
     }
   }
   IngestResult out;
-  const Summary s = summarize(tau);
-  Parameter p;
-  p.key = "paste.yield_stress";
-  p.value = s.mean;
-  p.sd = s.sd;
-  p.n = s.n;
-  p.unit = "Pa";
-  p.method = "slump test, Pashias-Boger cylinder S' = 1 - 2 tau'(1 - ln 2 tau'); closed-form Lambert W_-1 "
-             "inverse checked against a bracketed root (1e-9 rel); tau_y = tau' rho g H, g = 9.81";
-  p.provenance = Provenance::measured;
-  p.source = t.path();
+  Parameter p = summary_parameter("paste.yield_stress", tau, "Pa",
+                                  "slump test, Pashias-Boger cylinder S' = 1 - 2 tau'(1 - ln 2 tau'); closed-form "
+                                  "Lambert W_-1 inverse checked against a bracketed root (1e-9 rel); tau_y = tau' "
+                                  "rho g H, g = 9.81",
+                                  t.path());
   p.trials = tau;
   out.parameters.push_back(p);
-  const Summary r = summarize(rho);
-  Parameter d;
-  d.key = "paste.density";
-  d.value = r.mean;
-  d.sd = r.sd;
-  d.n = r.n;
-  d.unit = "kg/m3";
-  d.method = "as recorded with the slump tests";
-  d.provenance = Provenance::measured;
-  d.source = t.path();
-  out.parameters.push_back(d);
+  out.parameters.push_back(summary_parameter("paste.density", rho, "kg/m3", "as recorded with the slump tests", t.path()));
 
   // Printed values: do they agree with ours within their rounding? If not, say by how much and whether a
   // different mould height in tau_y = tau' rho g H explains them (the thesis's case: 0.150 m vs 0.152 m).
@@ -169,7 +153,7 @@ IngestResult ingest_slump(const CsvTable& t, const ColumnUnits& units) {
             for (double x : tau) v.push_back(fmt::format("{:.1f}", x));
             return fmt::format("{}", fmt::join(v, ", "));
           }(),
-          s.mean, 100.0 * rel_sum / static_cast<double>(tau.size()), 100.0 * rel_min, 100.0 * rel_max);
+          p.value, 100.0 * rel_sum / static_cast<double>(tau.size()), 100.0 * rel_min, 100.0 * rel_max);
       if (explained && std::abs(h_mm * 1e-3 - heights.front()) > 1e-9)
         msg += fmt::format("; consistent with H = {:.3f} m instead of the mould's {:.3f} m in tau_y = tau' rho g H "
                            "(reproduces every printed value within its rounding); we keep H = {:.3f} m",
@@ -186,7 +170,7 @@ IngestResult ingest_slump(const CsvTable& t, const ColumnUnits& units) {
       auto m = t.optional_number(row, "yield_stress_mean_Pa", Range::positive);
       if (!m) continue;
       const double printed_mean = *m * units.factor("yield_stress_mean_Pa");
-      if (std::abs(printed_mean - s.mean) > rounding_tolerance(t.text(row, "yield_stress_mean_Pa"))) {
+      if (std::abs(printed_mean - p.value) > rounding_tolerance(t.text(row, "yield_stress_mean_Pa"))) {
         if (lines.empty()) first_cell = t.text(row, "yield_stress_mean_Pa");
         lines.push_back(row.line);
       }
@@ -194,7 +178,7 @@ IngestResult ingest_slump(const CsvTable& t, const ColumnUnits& units) {
     if (!lines.empty())
       out.warnings.push_back(Warning{fmt::format("{}:{}", t.path(), lines.front()),
                                      fmt::format("printed mean yield stress {} Pa, recomputed {:.1f} Pa{}",
-                                                 shown(first_cell), s.mean, other_lines(lines))});
+                                                 shown(first_cell), p.value, other_lines(lines))});
   }
   return out;
 }

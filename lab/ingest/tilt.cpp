@@ -3,7 +3,6 @@
 
 #include <fmt/format.h>
 
-#include "base/stats.h"
 #include "lab/ingest/printed.h"
 
 namespace pastemix::lab {
@@ -35,16 +34,9 @@ IngestResult ingest_tilt(const CsvTable& t, const ColumnUnits& units) {
     mu.push_back(h / L);
     compare_printed(t, row, "static_friction_coefficient", mu.back(), "static friction", out.warnings);
   }
-  const Summary s = summarize(mu);
-  compare_printed_mean(t, "static_friction_coefficient_mean", s.mean, "static friction", out.warnings);
-  Parameter p;
-  p.key = "steel_ball.static_friction";
-  p.value = s.mean;
-  p.sd = s.sd;
-  p.n = s.n;
-  p.unit = std::string("-");  // (a temporary: GCC 12 warns falsely, -Wrestrict, on a 1-char literal)
-  p.method = "tilt test, steel ball on steel plate, mu_s = H_l/L";
-  p.source = t.path();
+  Parameter p = summary_parameter("steel_ball.static_friction", mu, "-",
+                                  "tilt test, steel ball on steel plate, mu_s = H_l/L", t.path());
+  compare_printed_mean(t, "static_friction_coefficient_mean", p.value, "static friction", out.warnings);
   p.trials = mu;
   out.parameters.push_back(p);
   return out;

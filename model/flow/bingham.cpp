@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "base/error.h"
+#include "base/store_rheology.h"
 #include "model/flow/solver.h"
 
 namespace pastemix::flow {
@@ -48,29 +49,9 @@ std::string HerschelBulkley::describe() const {
 }
 
 StorePaste read_store_paste(const std::string& file, double solids_fraction) {
-  const Params root = Params::parse_file(file);
-  const auto pr = root.optional_table("paste_rheology");
-  if (!pr)
-    throw InputError(file, 0, "paste_rheology",
-                     "missing: this store has no paste-rheology model; rerun `pastemix lab reduce datasets/thesis "
-                     "--out out/lab`");
-  std::string known;
-  for (const std::string& key : pr->keys()) {
-    if (key.rfind("cw_", 0) != 0) continue;
-    const Params t = pr->table(key);
-    const double cw = t.table("solids_fraction").number("value", Range::fraction);
-    known += fmt::format("{}{:g}", known.empty() ? "" : ", ", cw);
-    if (std::abs(cw - solids_fraction) > 1e-9) continue;
-    StorePaste s;
-    s.key = "paste_rheology." + key;
-    s.yield_stress = t.table("yield_stress").number("value", Range::non_negative);
-    s.plastic_viscosity = t.table("plastic_viscosity").number("value", Range::positive);
-    s.density = t.table("density").number("value", Range::positive);
-    return s;  // not finish()ed: the store holds every lab parameter
-  }
-  throw InputError(file, 0, "paste_rheology",
-                   fmt::format("no entry for solids content {:g} (the store has {})", solids_fraction,
-                               known.empty() ? "none" : known));
+  // The engine's reader (base/store_rheology.h), without the drag curve and provenance the flow does not use.
+  const StoreRheology r = read_store_rheology(file, solids_fraction, "value", StoreKeys::values);
+  return {r.key, r.yield_stress, r.plastic_viscosity, r.density};
 }
 
 namespace {

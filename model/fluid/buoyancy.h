@@ -9,9 +9,11 @@
 
 #include <algorithm>
 
+#include "base/units.h"
+
 namespace pastemix::model::fluid {
 
-inline constexpr double kPi = 3.14159265358979323846;
+inline constexpr double kPi = units::pi;  // base/units.h, the project's one pi
 
 // Submerged volume (m^3) of a sphere of radius r (m) with centre height z (m) below a surface at z_s (m).
 inline double submerged_volume(double z, double r, double z_s) {

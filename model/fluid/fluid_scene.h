@@ -33,6 +33,7 @@
 #include <vector>
 
 #include "base/params.h"
+#include "base/store_rheology.h"
 #include "model/fluid/field.h"
 
 namespace pastemix::model::fluid {
@@ -59,19 +60,9 @@ struct LabPaste {
 };
 LabPaste read_lab_paste(const std::string& parameters_toml, const std::string& curve_name = "");
 
-// The paste rheology a store (`lab reduce`, lab/rheology/paste_rheology.h) gives at one solids content:
-// paste_rheology.cw_<...>.{yield_stress, plastic_viscosity, density}, matched by solids_fraction (1e-9), and
-// paste_rheology.model.curve. InputError naming the file when the model or that solids content is missing.
-struct StoreRheology {
-  std::string key;                // paste_rheology.cw_72_5
-  double yield_stress = 0.0;      // Pa
-  double plastic_viscosity = 0.0; // Pa.s
-  double density = 0.0;           // kg/m3
-  std::string curve;              // the drag curve eta_B belongs to
-  std::string provenance;         // "model exponential, shape parameter calibrated on case 2" or "... (prior)"
-};
-// `at`: "value", or "minus_sd" / "plus_sd" (tau_y and eta_B with the shape parameter at -1 / +1 sd: the band).
-StoreRheology read_store_rheology(const std::string& parameters_toml, double solids_fraction,
-                                  const std::string& at = "value");
+// The paste rheology of a lab store at one solids content, with the drag curve eta_B belongs to and its
+// provenance (base/store_rheology.h: the one reader, shared with the flow solver).
+using pastemix::read_store_rheology;
+using pastemix::StoreRheology;
 
 }  // namespace pastemix::model::fluid

@@ -8,6 +8,7 @@
 
 #include "base/drag_curves.h"
 #include "base/params.h"
+#include "model/laws/drag_law.h"
 
 namespace pastemix::model {
 
@@ -28,20 +29,14 @@ struct BinghamDedegil {
     return {density, yield_stress, plastic_viscosity};
   }
 
-  struct Sphere {
-    Params fluid;
-    const drag::DragCurve* curve = nullptr;
-    double d = 0.0, y = 0.0;  // m, yield number
-  };
+  using Sphere = DragSphere<Params>;
   static Sphere sphere(const Params& p, const drag::DragCurve& c, double d, double y) { return {p, &c, d, y}; }
 
-  static double yield_term(const Sphere& s) {
-    return 0.25 * 3.14159265358979323846 * 3.14159265358979323846 * s.d * s.d * s.fluid.yield_stress;
-  }
+  static double yield_term(const Sphere& s) { return dedegil_yield_term(s.d, s.fluid.yield_stress); }
   // N; s in m/s.
   static double magnitude(const Sphere& s, double speed) {
     const double d = s.d;
-    const double area = 0.25 * 3.14159265358979323846 * d * d;  // m^2, projected area
+    const double area = projected_area(d);  // m^2
     const double yield = yield_term(s);
     if (speed <= 0.0) return yield;
     const double re = drag::bingham_reynolds(s.fluid.density, speed, s.fluid.yield_stress, s.fluid.plastic_viscosity, d);

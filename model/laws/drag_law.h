@@ -22,6 +22,7 @@
 #include <concepts>
 
 #include "base/drag_curves.h"
+#include "base/units.h"
 
 namespace pastemix::model {
 
@@ -35,5 +36,18 @@ concept DragLaw = requires(const typename L::Params& p, const typename L::Sphere
   { L::magnitude(s, 1.0) } -> std::convertible_to<double>;
   { L::yield_term(s) } -> std::convertible_to<double>;
 };
+
+// The Sphere of a law that keeps nothing more than its fluid, curve, diameter d (m) and yield number y.
+template <class P>
+struct DragSphere {
+  P fluid;
+  const drag::DragCurve* curve = nullptr;
+  double d = 0.0, y = 0.0;  // m, -
+};
+
+// Projected area pi d^2 / 4 of a sphere of diameter d (m), m^2.
+inline double projected_area(double d) { return 0.25 * units::pi * d * d; }
+// Dedegil's yield term (pi d / 2)^2 tau_y (N) of a sphere of diameter d (m) in a fluid of yield stress tau_y (Pa).
+inline double dedegil_yield_term(double d, double tau_y) { return 0.25 * units::pi * units::pi * d * d * tau_y; }
 
 }  // namespace pastemix::model

@@ -12,6 +12,7 @@
 
 #include "base/drag_curves.h"
 #include "base/params.h"
+#include "model/laws/drag_law.h"
 
 namespace pastemix::model {
 
@@ -33,16 +34,10 @@ struct HerschelBulkley {
     return p;
   }
 
-  struct Sphere {
-    Params fluid;
-    const drag::DragCurve* curve = nullptr;
-    double d = 0.0, y = 0.0;  // m, yield number
-  };
+  using Sphere = DragSphere<Params>;
   static Sphere sphere(const Params& p, const drag::DragCurve& c, double d, double y) { return {p, &c, d, y}; }
 
-  static double yield_term(const Sphere& s) {
-    return 0.25 * 3.14159265358979323846 * 3.14159265358979323846 * s.d * s.d * s.fluid.yield_stress;
-  }
+  static double yield_term(const Sphere& s) { return dedegil_yield_term(s.d, s.fluid.yield_stress); }
   // Re_HB at speed s (m/s).
   static double reynolds(const Sphere& s, double speed) {
     const Params& f = s.fluid;
@@ -50,7 +45,7 @@ struct HerschelBulkley {
   }
   // N; s in m/s.
   static double magnitude(const Sphere& s, double speed) {
-    const double area = 0.25 * 3.14159265358979323846 * s.d * s.d;  // m^2, projected area
+    const double area = projected_area(s.d);  // m^2
     const double yield = yield_term(s);
     if (speed <= 0.0) return yield;
     return yield + 0.5 * s.curve->cd(reynolds(s, speed), s.y) * s.fluid.density * speed * speed * area;

@@ -18,6 +18,7 @@
 #include <cmath>
 
 #include "base/params.h"
+#include "base/units.h"
 #include "model/material.h"
 #include "model/vec3.h"
 
@@ -53,7 +54,7 @@ struct HertzMindlin {
                       (1.0 - b.poisson_ratio * b.poisson_ratio) / b.youngs_modulus);
     q.G_star = 1.0 / ((2.0 - a.poisson_ratio) / a.shear_modulus() + (2.0 - b.poisson_ratio) / b.shear_modulus());
     const double le = std::log(p.restitution);
-    const double beta = le / std::sqrt(le * le + M_PI * M_PI);
+    const double beta = le / std::sqrt(le * le + units::pi * units::pi);
     q.damping = -2.0 * std::sqrt(5.0 / 6.0) * beta;
     q.sqrt_st_over_sn = std::sqrt(4.0 * q.G_star / q.E_star);
     q.friction = p.friction;

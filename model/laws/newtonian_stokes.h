@@ -7,6 +7,7 @@
 
 #include "base/drag_curves.h"
 #include "base/params.h"
+#include "model/laws/drag_law.h"
 
 namespace pastemix::model {
 
@@ -23,12 +24,8 @@ struct NewtonianStokes {
     return {f.number("density", Range::positive), f.number("viscosity", Range::positive)};
   }
 
-  struct Sphere {
-    Params fluid;
-    const drag::DragCurve* curve = nullptr;
-    double d = 0.0;  // m
-  };
-  static Sphere sphere(const Params& p, const drag::DragCurve& c, double d, double /*y*/) { return {p, &c, d}; }
+  using Sphere = DragSphere<Params>;  // y unused: no yield stress
+  static Sphere sphere(const Params& p, const drag::DragCurve& c, double d, double /*y*/) { return {p, &c, d, 0.0}; }
 
   static double yield_term(const Sphere&) { return 0.0; }
   // N s/m: with the Stokes curve D(s) = 3 pi eta d s exactly (24/Re times 1/2 rho s^2 pi d^2/4), so D(0+) = 0 and
@@ -41,7 +38,7 @@ struct NewtonianStokes {
   static double magnitude(const Sphere& s, double speed) {
     if (speed <= 0.0) return 0.0;
     const double d = s.d;
-    const double area = 0.25 * 3.14159265358979323846 * d * d;  // m^2
+    const double area = projected_area(d);  // m^2
     const double re = drag::bingham_reynolds(s.fluid.density, speed, 0.0, s.fluid.viscosity, d);
     return 0.5 * s.curve->cd(re, 0.0) * s.fluid.density * speed * speed * area;
   }

@@ -15,6 +15,7 @@
 #include "base/error.h"
 #include "base/h5.h"
 #include "model/scene.h"
+#include "tests/model/scene_text.h"
 #include "tests/run_command.h"
 #include "base/units.h"
 
@@ -23,34 +24,9 @@ using namespace pastemix::model;
 
 namespace {
 
-// Line numbers below count from this text.
-const std::string kBase =
-    "time_step = 1e-6\n"           // 1
-    "end_time = 0.01\n"            // 2
-    "[domain]\n"                   // 3
-    "min = [-1, -1, -1]\n"         // 4
-    "max = [1, 1, 1]\n"            // 5
-    "[contact]\n"                  // 6
-    "law = \"hertz_mindlin\"\n"    // 7
-    "[[material]]\n"               // 8
-    "name = \"rock\"\n"            // 9
-    "density = 2760\n"             // 10
-    "youngs_modulus = 4.68e7\n"    // 11
-    "poisson_ratio = 0.19\n"       // 12
-    "[[interaction]]\n"            // 13
-    "materials = \"rock/rock\"\n"  // 14
-    "restitution = 0.79\n"         // 15
-    "friction = 0.466\n";          // 16
-const std::string kSphere = "[[particle]]\nmaterial = \"rock\"\nradius = 0.01\nposition = [0, 0, 0]\n";
-
-std::string error_of(const std::string& text, const std::string& path = "bad.toml") {
-  try {
-    parse_scene(text, path);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+using model::test::error_of;
+using model::test::kBase;
+using model::test::kSphere;
 
 std::string factory(const std::string& shape_lines) {
   return "[[factory]]\nmaterial = \"rock\"\nmass = 0.001\n" + shape_lines +

@@ -13,6 +13,37 @@ inline Scene scene_from(const std::string& text, const std::string& name = "test
   return parse_scene(text, name);
 }
 
+// One rock sphere in a 2 m box: the base of the scene-error tests. Line numbers in their checks count from
+// this text (scene_test.cpp, scene_checks_test.cpp): keep it in sync with them.
+inline const std::string kBase =
+    "time_step = 1e-6\n"           // 1
+    "end_time = 0.01\n"            // 2
+    "[domain]\n"                   // 3
+    "min = [-1, -1, -1]\n"         // 4
+    "max = [1, 1, 1]\n"            // 5
+    "[contact]\n"                  // 6
+    "law = \"hertz_mindlin\"\n"    // 7
+    "[[material]]\n"               // 8
+    "name = \"rock\"\n"            // 9
+    "density = 2760\n"             // 10
+    "youngs_modulus = 4.68e7\n"    // 11
+    "poisson_ratio = 0.19\n"       // 12
+    "[[interaction]]\n"            // 13
+    "materials = \"rock/rock\"\n"  // 14
+    "restitution = 0.79\n"         // 15
+    "friction = 0.466\n";          // 16
+inline const std::string kSphere = "[[particle]]\nmaterial = \"rock\"\nradius = 0.01\nposition = [0, 0, 0]\n";
+
+// The InputError message of loading `text` as the scene file `path` ("" if it loads).
+inline std::string error_of(const std::string& text, const std::string& path = "bad.toml") {
+  try {
+    parse_scene(text, path);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
 // A [[material]] block.
 inline std::string material(const std::string& name, double density, double E, double nu) {
   return "[[material]]\nname = \"" + name + "\"\ndensity = " + std::to_string(density) +

@@ -152,8 +152,6 @@ TEST_CASE("outflow: a removal gives the same bits on 1 and 2 threads (and in bat
   // domain through its edge while the pile's contacts (pairs and walls, histories in use) go on.
   auto run = [](int threads, long batch) {
     omp_set_num_threads(threads);
-    const long saved = parallel_min_items;
-    parallel_min_items = 0;  // force the parallel paths even for this small scene
     std::string text =
         header(4e-6, 1.0, "[0, 0, -9.81]", "[0.1, 0.1, 1.0]", "on_exit = \"remove\"\nmax_escaped_fraction = 0.5\n",
                true, "[-0.1, -0.1, -0.05]") +
@@ -168,7 +166,9 @@ TEST_CASE("outflow: a removal gives the same bits on 1 and 2 threads (and in bat
         "curve = \"published_4_19\"\nsolids_fraction = 0.75\n" +
         sphere(0.003, "[0.04, 0.0, 0.01]", "[4, 0, 0]") + sphere(0.003, "[-0.04, 0.0, 0.01]", "[-4, 0, 0]") +
         sphere(0.003, "[0.0, 0.04, 0.01]", "[0, 4, 0]") + sphere(0.003, "[0.0, -0.04, 0.01]", "[0, -4.5, 0]");
-    World w = make_world(model::test::scene_from(text));
+    Scene scene = model::test::scene_from(text);
+    scene.config.parallel_min_items = 0;  // force the parallel paths even for this small scene
+    World w = make_world(scene);
     for (long k = 0; k < 6000; k += batch) w.advance(batch);  // 0.024 s: out at ~0.015 s; the pile collides
     const Energies e = w.energies();
     REQUIRE(w.fluid() != nullptr);
@@ -176,7 +176,6 @@ TEST_CASE("outflow: a removal gives the same bits on 1 and 2 threads (and in bat
     for (std::size_t a = 0; a < w.particles().size(); ++a) wet += w.fluid()->inside(static_cast<long>(a));
     CHECK(wet > 0);
     omp_set_num_threads(omp_get_num_procs());
-    parallel_min_items = saved;
     return std::make_tuple(w.particles().x, w.particles().v, w.escaped(), e.pair_contacts);
   };
   const auto [xa, va, ea, pairs] = run(1, 1);

@@ -191,16 +191,15 @@ TEST_CASE("determinism: 1 vs 2 threads bitwise identical, same seed identical, a
   // batch > 1: World::advance(batch) (the fused passes `pastemix run` uses) instead of single steps.
   auto run = [](int threads, long seed, long batch = 1) {
     omp_set_num_threads(threads);
-    const long saved = parallel_min_items;
-    parallel_min_items = 0;  // force the parallel paths even for this small scene
     std::string text = pile_scene("constant_torque", 1.0);
     text.replace(text.find("seed = 3"), 8, fmt::format("seed = {}", seed));
     // Thrown down at 1.5 m/s so that the spheres hit the floor and each other within the 0.02 s run.
     text.replace(text.find("z_max = 0.06\n"), 13, "z_max = 0.06\nvelocity = [0, 0, -1.5]\n");
-    World w = make_world(model::test::scene_from(text));
+    Scene scene = model::test::scene_from(text);
+    scene.config.parallel_min_items = 0;  // force the parallel paths even for this small scene
+    World w = make_world(scene);
     for (long k = 0; k < 5000; k += batch) w.advance(batch);  // 0.02 s: the spheres are falling and colliding
     omp_set_num_threads(omp_get_num_procs());
-    parallel_min_items = saved;
     return w.particles().x;
   };
   // c: the same seed again, in batches (fused passes); must equal the single steps bit for bit.

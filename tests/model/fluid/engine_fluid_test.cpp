@@ -88,14 +88,12 @@ fraction = 1.0
 )";
 
 // The scene run on 2 threads (every loop parallel), in batches of 400 steps, for `steps` steps.
-World two_threads_in_batches(const Scene& scene, long steps) {
-  const long saved = parallel_min_items;
-  parallel_min_items = 0;
+World two_threads_in_batches(Scene scene, long steps) {
+  scene.config.parallel_min_items = 0;
   omp_set_num_threads(2);
   World two = make_world(scene);
   for (long s = 0; s < steps; s += 400) two.advance(400);
   omp_set_num_threads(omp_get_num_procs());
-  parallel_min_items = saved;
   return two;
 }
 

@@ -12,6 +12,7 @@
 #include "base/error.h"
 #include "model/fluid/drag_kick.h"
 #include "model/fluid/fluid_scene.h"
+#include "base/units.h"
 #include "model/laws/bingham_dedegil.h"
 
 using namespace pastemix;
@@ -19,7 +20,7 @@ using namespace pastemix::model;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = units::pi;
 
 // The paste of the thesis (1843 kg/m3, 138 Pa, 0.7 Pa.s) as both laws, with n = 1.
 const BinghamDedegil::Params kBingham{1843.0, 138.0, 0.7};

@@ -1,0 +1,30 @@
+// SPDX-License-Identifier: MIT
+// Profile: wall-clock seconds per stage of the step, as seen by thread 0. Its own header because the force
+// passes (forces/force_pass.h) name the line they are timed on.
+#pragma once
+
+#include <array>
+
+namespace pastemix::model {
+
+// The stages in the order of the step:
+//   kick_drift      the first half kick and drift of a batch of steps (World::advance; the later ones are
+//                   fused into `kick`)
+//   neighbor        list rebuilds (and the threads' partition)
+//   contact_forces  the pair pass (contact and rolling laws over the pair list)
+//   walls           the wall pass (forces/wall_forces.h): wall forces of the particles near a wall
+//   kick            the closing half kick, the next opening half kick and drift of the particles no kick
+//                   pass claims; gravity (forces/gravity.h) is a term of this kick (a = f/m + g)
+//   fluid           the fluid pass (forces/fluid_forces.h): the field's update, then the fluid kicks and
+//                   drifts of the particles inside a region
+//   wait            thread 0 waiting at the step's barrier for the other threads
+//   output          writing snapshots (run.cpp)
+struct Profile {
+  enum Stage { kick_drift, neighbor, contact_forces, walls, kick, fluid, wait, output, count };
+  static constexpr std::array<const char*, count> names{"kick_drift", "neighbor", "contact_forces", "walls",
+                                                        "kick",       "fluid",    "wait",           "output"};
+  std::array<double, count> seconds{};
+  long rebuilds = 0;
+};
+
+}  // namespace pastemix::model
