@@ -203,9 +203,9 @@ TEST_CASE("run --resume: without a checkpoint it starts from 0, stale partials g
 
 namespace {
 
-// The small pour of fuzz/corpus (2 g of 2.5-5 mm rock into the box: contacts, walls, rolling), 0.15 s.
+// The small pour of tests/model/data (2 g of 2.5-5 mm rock into the box: contacts, walls, rolling), 0.15 s.
 std::string small_pour(const std::string& extra_output) {
-  std::ifstream in(pastemix::test::source_path("fuzz/corpus/scene/pour_box_small.toml"));
+  std::ifstream in(pastemix::test::source_path("tests/model/data/pour_box_small.toml"));
   std::stringstream s;
   s << in.rdbuf();
   std::string text = s.str();
