@@ -37,13 +37,7 @@ void set_threads(int threads) {
   Eigen::setNbThreads(threads);
 }
 
-void print_cost(const Cost& c, double drift, double divergence) {
-  fmt::print("  cost: {} cells x {} steps in {:.2f} s = {:.3g} cell-steps/s; CG iterations per solve: pressure {:.1f}, "
-             "viscous {:.1f}\n",
-             c.cells, c.steps, c.seconds, c.cell_steps_per_second, c.pressure_iterations, c.viscous_iterations);
-  fmt::print("  paste volume drift {:.3e} (relative); max relative divergence after projection {:.3e}\n", drift,
-             divergence);
-}
+void print_cost(const Cost& c, double drift, double divergence) { print_flow_cost(c, drift, divergence, "  "); }
 
 void run_cavity(int n, int re, double max_time, bool order) {
   const GhiaReference ref = read_ghia(reference("ghia_ghia_shin_1982_cavity.csv"), re);
@@ -231,6 +225,14 @@ void register_flow_commands(CLI::App& app) {
     set_threads(o->threads);
     run_case(o->file, o->out);
   });
+}
+
+void print_flow_cost(const flow::Cost& c, double drift, double divergence, const char* indent) {
+  fmt::print("{}cost: {} cells x {} steps in {:.2f} s = {:.3g} cell-steps/s; CG iterations per solve: pressure {:.1f}, "
+             "viscous {:.1f}\n",
+             indent, c.cells, c.steps, c.seconds, c.cell_steps_per_second, c.pressure_iterations, c.viscous_iterations);
+  fmt::print("{}paste volume drift {:.3e} (relative); max relative divergence after projection {:.3e}\n", indent,
+             drift, divergence);
 }
 
 }  // namespace pastemix::app

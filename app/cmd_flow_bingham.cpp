@@ -29,13 +29,7 @@ namespace {
 
 using namespace pastemix::flow;
 
-void print_cost(const Cost& c, double drift, double divergence) {
-  fmt::print("    cost: {} cells x {} steps in {:.2f} s = {:.3g} cell-steps/s; CG iterations per solve: pressure {:.1f}, "
-             "viscous {:.1f}\n",
-             c.cells, c.steps, c.seconds, c.cell_steps_per_second, c.pressure_iterations, c.viscous_iterations);
-  fmt::print("    paste volume drift {:.3e} (relative); max relative divergence after projection {:.3e}\n", drift,
-             divergence);
-}
+void print_cost(const Cost& c, double drift, double divergence) { print_flow_cost(c, drift, divergence, "    "); }
 
 void run_poiseuille(int cells, double m) {
   fmt::print("poiseuille: Bingham plane Poiseuille, H = 2 cm, tau_y 138 Pa, eta_B 0.7 Pa s, plug half-width H/4, "

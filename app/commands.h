@@ -4,6 +4,10 @@
 
 #include <CLI/CLI.hpp>
 
+namespace pastemix::flow {
+struct Cost;
+}
+
 namespace pastemix::app {
 
 // A subcommand that groups others and that several layers add to (`calibrate`): created by the first caller,
@@ -31,6 +35,9 @@ void register_flow_commands(CLI::App& app);
 // `pastemix validate flow poiseuille | incline | cliff | slump` (yield-stress cases, app/cmd_flow_bingham.cpp),
 // registered on the `validate flow` subcommand.
 void register_flow_bingham_commands(CLI::App& validate_flow);
+// The two lines every flow validation prints: cost (cells, steps, cell-steps/s, CG iterations per solve) and
+// conservation (paste volume drift, leftover divergence), each line starting with `indent`.
+void print_flow_cost(const flow::Cost& c, double drift, double divergence, const char* indent);
 // `pastemix sweep` (app/cmd_study.cpp).
 void register_study_commands(CLI::App& app);
 
