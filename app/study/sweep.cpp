@@ -173,35 +173,54 @@ RunCost cached_run_once(const model::SceneDoc& doc, const std::string& qoi, cons
   }
 }
 
-SweepResult sweep(const model::SceneDoc& base, const SweepOptions& o) {
-  find_qoi(o.qoi);
-  if (o.seeds < 1) throw InputError("", 0, "--seeds", "must be >= 1");
-  if (!(o.tol > 0)) throw InputError("", 0, "--tol", "must be > 0");
-  SweepResult r;
-  const std::vector<double> values = o.values.empty() ? default_ladder(base, o) : o.values;
-  if (values.empty()) throw InputError(base.path(), 0, "--values", "the ladder is empty");
-  const long seed0 = base.has("seed") ? std::stol(base.get("seed")) : 1;
+namespace {
+
+// One (ladder value, seed) run of a sweep; the scenes are built (and checked) before any run starts.
+struct Task {
+  std::size_t point;
+  long seed;
+  model::SceneDoc doc;
+  std::optional<RunCost> cost;
+  std::string failure;
+};
+
+// The checks of the options that need the scene's seed.
+void check_seeds_jobs(const model::SceneDoc& base, const SweepOptions& o) {
   if (o.seeds > 1 && !base.has("seed"))
     throw InputError(base.path(), 0, "seed", "--seeds > 1 needs a top-level seed key");
   if (o.jobs < 1) throw InputError("", 0, "--jobs", "must be >= 1");
-  // Every (value, seed) run is one task; the scenes are built (and checked) before any run starts.
-  struct Task {
-    std::size_t point;
-    long seed;
-    model::SceneDoc doc;
-    std::optional<RunCost> cost;
-    std::string failure;
-  };
+}
+
+// The ladder x seeds as tasks; `time_step` gets each point's step (s).
+std::vector<Task> make_tasks(const model::SceneDoc& base, const SweepOptions& o, const std::vector<double>& values,
+                             long seed0, std::vector<double>& time_step) {
   std::vector<Task> tasks;
   for (std::size_t k = 0; k < values.size(); ++k) {
     const model::SceneDoc d = at_value(base, o, values[k]);
-    r.time_step.push_back(std::stod(d.get("time_step")));
+    time_step.push_back(std::stod(d.get("time_step")));
     for (int s = 0; s < o.seeds; ++s) {
       model::SceneDoc ds = d;
       if (o.seeds > 1) ds.set("seed", std::to_string(seed0 + s));
       tasks.push_back({k, seed0 + s, std::move(ds), std::nullopt, {}});
     }
   }
+  return tasks;
+}
+
+// The per-run line on stderr.
+void print_task(const Task& t, const SweepOptions& o, double value, bool on_disk) {
+  const char* from = on_disk ? " (on disk)" : "";
+  if (t.cost)
+    fmt::print(stderr, "  {} = {:.4g} seed {}: {} = {:.6g} ({} particles, {:.0f} steps, {:.2f} s){}\n", o.vary,
+               value, t.seed, o.qoi, t.cost->qoi, t.cost->particles,
+               t.cost->work / static_cast<double>(t.cost->particles), t.cost->wall_s, from);
+  else
+    fmt::print(stderr, "  {} = {:.4g} seed {}: FAILED: {}{}\n", o.vary, value, t.seed, t.failure, from);
+}
+
+// Runs every task, `o.jobs` at once (a queue); a RuntimeFailure is kept in its task. Counts the runs done now
+// and those read back from the run records into `r`.
+void run_tasks(std::vector<Task>& tasks, const SweepOptions& o, const std::vector<double>& values, SweepResult& r) {
   const RunCache cache(o.runs);
   std::atomic<std::size_t> next{0};
   std::atomic<int> executed{0}, read_back{0};
@@ -210,37 +229,36 @@ SweepResult sweep(const model::SceneDoc& base, const SweepOptions& o) {
     if (o.jobs > 1) omp_set_num_threads(1);
     for (std::size_t i; (i = next++) < tasks.size();) {
       Task& t = tasks[i];
+      const double value = values[t.point];
       const std::filesystem::path save =
           o.save.empty() ? std::filesystem::path{}
-                         : o.save / fmt::format("{}_{:.6g}_seed{}.h5", o.vary, values[t.point], t.seed);
+                         : o.save / fmt::format("{}_{:.6g}_seed{}.h5", o.vary, value, t.seed);
       bool on_disk = false;
       try {
-        t.cost = cached_run_once(t.doc, o.qoi, cache,
-                                 fmt::format("sweep --vary {} = {:.10g} seed {} --qoi {}", o.vary, values[t.point],
-                                             t.seed, o.qoi),
-                                 o.engine, on_disk, save);
+        t.cost = cached_run_once(
+            t.doc, o.qoi, cache,
+            fmt::format("sweep --vary {} = {:.10g} seed {} --qoi {}", o.vary, value, t.seed, o.qoi), o.engine,
+            on_disk, save);
       } catch (const RuntimeFailure& e) {
         t.failure = e.what();
       }
       ++(on_disk ? read_back : executed);
       if (o.quiet) continue;
       std::lock_guard<std::mutex> lock(print);
-      const char* from = on_disk ? " (on disk)" : "";
-      if (t.cost)
-        fmt::print(stderr, "  {} = {:.4g} seed {}: {} = {:.6g} ({} particles, {:.0f} steps, {:.2f} s){}\n", o.vary,
-                   values[t.point], t.seed, o.qoi, t.cost->qoi, t.cost->particles,
-                   t.cost->work / static_cast<double>(t.cost->particles), t.cost->wall_s, from);
-      else
-        fmt::print(stderr, "  {} = {:.4g} seed {}: FAILED: {}{}\n", o.vary, values[t.point], t.seed, t.failure, from);
+      print_task(t, o, value, on_disk);
     }
   };
-  {
-    std::vector<std::thread> pool;
-    for (int j = 1; j < std::min<int>(o.jobs, static_cast<int>(tasks.size())); ++j) pool.emplace_back(worker);
-    worker();
-    for (auto& th : pool) th.join();
-  }
+  std::vector<std::thread> pool;
+  for (int j = 1; j < std::min<int>(o.jobs, static_cast<int>(tasks.size())); ++j) pool.emplace_back(worker);
+  worker();
+  for (auto& th : pool) th.join();
   r.executed = executed, r.read_back = read_back;
+}
+
+// One ladder point per value whose runs all succeeded (mean and sd over the seeds); a point with a failed run
+// goes to r.failed instead, and its time step is dropped from r.time_step.
+void gather_points(const std::vector<Task>& tasks, const SweepOptions& o, const std::vector<double>& values,
+                   SweepResult& r) {
   std::vector<double> kept_dt;
   for (std::size_t k = 0; k < values.size(); ++k) {
     std::vector<double> q, wall;
@@ -267,12 +285,20 @@ SweepResult sweep(const model::SceneDoc& base, const SweepOptions& o) {
   if (r.points.empty())
     throw RuntimeFailure(fmt::format("sweep: every run failed; the first: {} = {:g} seed {}: {}", o.vary,
                                      r.failed.front().value, r.failed.front().seed, r.failed.front().reason));
-  // Richardson needs the kept points to be successive halvings (a failed coarse point leaves them so).
+}
+
+// The reference (Richardson where the kept points are successive halvings of dt; a failed coarse point leaves
+// them so) and the cheapest point within the tolerance.
+void choose_point(const SweepOptions& o, SweepResult& r) {
   bool halving = o.vary == "dt";
   for (std::size_t k = 1; halving && k < r.points.size(); ++k)
     halving = std::abs(r.points[k - 1].value / r.points[k].value - 2.0) < 1e-9;
   r.ref = reference_of(r.points, halving ? 2.0 : 0.0);
   r.choice = choose(r.points, r.ref, o.tol);
+}
+
+// The speed-vs-error table without its last line (the choice).
+std::string sweep_table(const model::SceneDoc& base, const SweepOptions& o, const SweepResult& r) {
   const double cost_ref = r.points.back().work;
   std::ostringstream t;
   t << fmt::format("sweep {} on {}: QoI {} ({}), tol {:g}, {} seed(s)\n", o.vary, base.path(), o.qoi,
@@ -289,28 +315,51 @@ SweepResult sweep(const model::SceneDoc& base, const SweepOptions& o) {
   }
   for (const auto& f : r.failed)
     t << fmt::format("  {:>12.4g} | FAILED (seed {}): {}\n", f.value, f.seed, f.reason);
+  return t.str();
+}
+
+// The chosen setting `v` as override lines (`pastemix run --overrides`).
+std::string chosen_overrides(const model::SceneDoc& base, const SweepOptions& o, double v) {
+  const model::SceneDoc d = at_value(base, o, v);
+  std::ostringstream ov;
+  ov << fmt::format("# pastemix sweep --vary {} --qoi {} --tol {:g}: chosen {} = {:.6g}\n", o.vary, o.qoi, o.tol,
+                    o.vary, v);
+  if (o.vary == "psd_cut") {
+    for (std::size_t i = 0; i < d.size("factory"); ++i)
+      if (d.has(psd_of(i))) ov << psd_of(i) << " = " << d.get(psd_of(i)) << "\n";
+    return ov.str();
+  }
+  if (o.vary == "youngs_modulus") {
+    const std::string key = "material." + material_name(base, o) + ".youngs_modulus";
+    ov << key << " = " << d.get(key) << "\n";
+  }
+  ov << "time_step = " << d.get("time_step") << "\n";
+  return ov.str();
+}
+
+}  // namespace
+
+SweepResult sweep(const model::SceneDoc& base, const SweepOptions& o) {
+  find_qoi(o.qoi);
+  if (o.seeds < 1) throw InputError("", 0, "--seeds", "must be >= 1");
+  if (!(o.tol > 0)) throw InputError("", 0, "--tol", "must be > 0");
+  SweepResult r;
+  const std::vector<double> values = o.values.empty() ? default_ladder(base, o) : o.values;
+  if (values.empty()) throw InputError(base.path(), 0, "--values", "the ladder is empty");
+  const long seed0 = base.has("seed") ? std::stol(base.get("seed")) : 1;
+  check_seeds_jobs(base, o);
+  std::vector<Task> tasks = make_tasks(base, o, values, seed0, r.time_step);
+  run_tasks(tasks, o, values, r);
+  gather_points(tasks, o, values, r);
+  choose_point(o, r);
+  r.table = sweep_table(base, o, r);
   if (r.choice.index < 0) {
-    t << "no setting is within the tolerance of the reference\n";
+    r.table += "no setting is within the tolerance of the reference\n";
   } else {
     const double v = r.points[static_cast<std::size_t>(r.choice.index)].value;
-    const model::SceneDoc d = at_value(base, o, v);
-    std::ostringstream ov;
-    ov << fmt::format("# pastemix sweep --vary {} --qoi {} --tol {:g}: chosen {} = {:.6g}\n", o.vary, o.qoi, o.tol,
-                      o.vary, v);
-    if (o.vary == "psd_cut") {
-      for (std::size_t i = 0; i < d.size("factory"); ++i)
-        if (d.has(psd_of(i))) ov << psd_of(i) << " = " << d.get(psd_of(i)) << "\n";
-    } else {
-      if (o.vary == "youngs_modulus") {
-        const std::string key = "material." + material_name(base, o) + ".youngs_modulus";
-        ov << key << " = " << d.get(key) << "\n";
-      }
-      ov << "time_step = " << d.get("time_step") << "\n";
-    }
-    r.override_text = ov.str();
-    t << fmt::format("chosen: {} = {:.6g}\n", o.vary, v);
+    r.override_text = chosen_overrides(base, o, v);
+    r.table += fmt::format("chosen: {} = {:.6g}\n", o.vary, v);
   }
-  r.table = t.str();
   return r;
 }
 
