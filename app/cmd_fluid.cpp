@@ -41,10 +41,7 @@ drag::DragCurve curve_option(const std::string& name, const std::string& params)
 }
 
 
-void register_validate(CLI::App& app) {
-  CLI::App* val = app.add_subcommand("validate", "fluid validations through the engine");
-  val->require_subcommand(1);
-
+void register_water(CLI::App* val) {
   auto dts = std::make_shared<std::vector<double>>(std::vector<double>{1e-7, 1e-6, 1e-5, 2.5e-5, 1e-4, 1e-3});
   CLI::App* water = val->add_subcommand("water", "0.1 mm, 2700 kg/m3 settling in water vs v_t (1 - exp(-t/tau))");
   water->add_option("--dt", *dts, "time steps (s)")->delimiter(',');
@@ -56,12 +53,47 @@ void register_validate(CLI::App& app) {
       fmt::print("{:>10.3g} {:>8} {:>14.3e} {:>10.3g}\n", dt, w.steps, w.max_rel_error, dt / w.tau);
     }
   });
+}
 
-  struct SettleOpts {
-    std::string dataset, curve = "power_blend", params;
-    int rows = 0;
-    double dt = 1e-3, column = 3.0;
-  };
+struct SettleOpts {
+  std::string dataset, curve = "power_blend", params;
+  int rows = 0;
+  double dt = 1e-3, column = 3.0;
+};
+
+// The worst |DEM/lab - 1| over the spheres compared, and the counts of the summary line.
+struct SettleTally {
+  double worst = 0.0;
+  int worst_row = 0, trapped = 0, compared = 0, inconsistent = 0;
+};
+
+// One Valentik & Whitmore sphere: the DEM column against the lab force balance, one table row.
+void settle_row(const lab::drag::SettlingSphere& sp, const drag::DragCurve& curve, const SettleOpts& so,
+                SettleTally& tally) {
+  const auto lab = lab::drag::solve_terminal_velocity(curve, sp.sphere, 9.81);
+  SphereRun r;
+  r.d = sp.sphere.d, r.rho_p = sp.sphere.rho_p, r.rho_f = sp.sphere.rho_f, r.tau_y = sp.sphere.tau_y;
+  r.eta = sp.sphere.eta_B, r.curve = curve, r.dt = so.dt;
+  const ColumnSettling c = column_settling(r, so.column);
+  // Trapped: at rest in the DEM although the force balance has no rest state (the lab says it moves).
+  const bool held = lab.outcome == lab::drag::SettlingOutcome::suspended;
+  tally.trapped += c.trapped && !held;
+  std::string outcome = lab::drag::to_string(lab.outcome);
+  double diff = NAN;
+  if (lab.outcome == lab::drag::SettlingOutcome::settling) {
+    diff = 100.0 * (c.v_final / lab.v - 1.0);
+    ++tally.compared;
+    if (std::abs(diff) > tally.worst) tally.worst = std::abs(diff), tally.worst_row = sp.row_id;
+  } else {
+    ++tally.inconsistent;
+  }
+  if (c.trapped) outcome += held ? " (DEM at rest too)" : " TRAPPED";
+  if (!c.trapped && held) outcome += " (DEM MOVES)";
+  fmt::print("{:>4} {:>3} {:>8.2f} {:>10.5f} {:>10.5f} {:>9.4f} {:>8.4f} {}\n", sp.row_id, sp.suspension,
+             1e3 * sp.sphere.d, lab.v, c.v_final, diff, 100.0 * c.v_change, outcome);
+}
+
+void register_settling(CLI::App* val) {
   auto so = std::make_shared<SettleOpts>();
   CLI::App* settle = val->add_subcommand("settling", "DEM terminal velocities of the Valentik & Whitmore spheres");
   settle->add_option("dataset", so->dataset, "dataset folder (valentik_whitmore_1965_*.csv)")->required();
@@ -75,39 +107,16 @@ void register_validate(CLI::App& app) {
     const auto data = lab::drag::read_settling_dataset(so->dataset);
     fmt::print("{:>4} {:>3} {:>8} {:>10} {:>10} {:>9} {:>8} {}\n", "row", "sus", "d (mm)", "v_lab", "v_dem",
                "diff %", "steady%", "outcome");
-    double worst = 0.0;
-    int worst_row = 0, trapped = 0, compared = 0, inconsistent = 0;
+    SettleTally tally;
     const std::size_t n = so->rows > 0 ? std::min<std::size_t>(so->rows, data.spheres.size()) : data.spheres.size();
-    for (std::size_t k = 0; k < n; ++k) {
-      const auto& sp = data.spheres[k];
-      const auto lab = lab::drag::solve_terminal_velocity(curve, sp.sphere, 9.81);
-      SphereRun r;
-      r.d = sp.sphere.d, r.rho_p = sp.sphere.rho_p, r.rho_f = sp.sphere.rho_f, r.tau_y = sp.sphere.tau_y;
-      r.eta = sp.sphere.eta_B, r.curve = curve, r.dt = so->dt;
-      const ColumnSettling c = column_settling(r, so->column);
-      // Trapped: at rest in the DEM although the force balance has no rest state (the lab says it moves).
-      const bool held = lab.outcome == lab::drag::SettlingOutcome::suspended;
-      trapped += c.trapped && !held;
-      std::string outcome = lab::drag::to_string(lab.outcome);
-      double diff = NAN;
-      if (lab.outcome == lab::drag::SettlingOutcome::settling) {
-        diff = 100.0 * (c.v_final / lab.v - 1.0);
-        ++compared;
-        if (std::abs(diff) > worst) worst = std::abs(diff), worst_row = sp.row_id;
-      } else {
-        ++inconsistent;
-      }
-      if (c.trapped) outcome += held ? " (DEM at rest too)" : " TRAPPED";
-      if (!c.trapped && held) outcome += " (DEM MOVES)";
-      fmt::print("{:>4} {:>3} {:>8.2f} {:>10.5f} {:>10.5f} {:>9.4f} {:>8.4f} {}\n", sp.row_id, sp.suspension,
-                 1e3 * sp.sphere.d, lab.v, c.v_final, diff, 100.0 * c.v_change, outcome);
-    }
+    for (std::size_t k = 0; k < n; ++k) settle_row(data.spheres[k], curve, *so, tally);
     fmt::print("curve {}: {} spheres, {} compared, max |DEM/lab - 1| = {:.4f} % (row {}), trapped {}, "
                "no consistent lab solution {}\n",
-               so->curve, n, compared, worst, worst_row, trapped, inconsistent);
+               so->curve, n, tally.compared, tally.worst, tally.worst_row, tally.trapped, tally.inconsistent);
   });
+}
 
-  register_pour(val);
+void register_suspension(CLI::App* val) {
   CLI::App* susp = val->add_subcommand("suspension", "rest above the yield-number threshold, sinking below it");
   susp->callback([] {
     // A 10 mm, 2700 kg/m3 sphere in a 1500 kg/m3 Bingham fluid (eta 0.1 Pa.s), the 4.19 curve.
@@ -123,12 +132,31 @@ void register_validate(CLI::App& app) {
       fmt::print("{:>10.4g} {:>10.4g} {:>14.6e} {:>12.6e}\n", f, r.tau_y, s.displacement, s.speed_end);
     }
   });
+}
 
-  struct BallOpts {
-    double dt = 2e-5, offset = 0.0;
-    bool no_wall = false;
-    PasteOpts paste;
-  };
+struct BallOpts {
+  double dt = 2e-5, offset = 0.0;
+  bool no_wall = false;
+  PasteOpts paste;
+};
+
+// The Table 4.4 grid: settling distance (mm) per ball diameter and falling height; * = reached the bottom.
+void print_ball_table(const SteelBallPaste& p, double eta) {
+  const std::vector<double> heights{0.0, 0.105, 0.150, 0.255};
+  fmt::print("{:>10}", "ball (mm)");
+  for (double h : heights) fmt::print(" {:>9}", fmt::format("H={:.0f}", 1e3 * h));
+  fmt::print("\n");
+  for (double d : {0.008, 0.0126, 0.016}) {
+    fmt::print("{:>10.1f}", 1e3 * d);
+    for (double h : heights) {
+      const BallDrop b = steel_ball_drop(p, d, h, eta);
+      fmt::print(" {:>9}", fmt::format("{:.2f}{}", 1e3 * b.distance, b.reached_bottom ? "*" : ""));
+    }
+    fmt::print("\n");
+  }
+}
+
+void register_steel_balls(CLI::App* val) {
   auto bo = std::make_shared<BallOpts>();
   CLI::App* balls = val->add_subcommand("steel-balls", "Table 4.4: settling distance vs falling height");
   add_paste_options(balls, bo->paste);
@@ -146,19 +174,18 @@ void register_validate(CLI::App& app) {
                "initial paste surface to the ball's bottom at rest (mm)\n",
                p.rho_ball, 1e3 * p.mould_diameter, 1e3 * p.mould_height,
                p.mould_wall ? " with its side wall" : " WITHOUT side wall", bo->offset, p.dt);
-    const std::vector<double> heights{0.0, 0.105, 0.150, 0.255};
-    fmt::print("{:>10}", "ball (mm)");
-    for (double h : heights) fmt::print(" {:>9}", fmt::format("H={:.0f}", 1e3 * h));
-    fmt::print("\n");
-    for (double d : {0.008, 0.0126, 0.016}) {
-      fmt::print("{:>10.1f}", 1e3 * d);
-      for (double h : heights) {
-        const BallDrop b = steel_ball_drop(p, d, h, paste.eta);
-        fmt::print(" {:>9}", fmt::format("{:.2f}{}", 1e3 * b.distance, b.reached_bottom ? "*" : ""));
-      }
-      fmt::print("\n");
-    }
+    print_ball_table(p, paste.eta);
   });
+}
+
+void register_validate(CLI::App& app) {
+  CLI::App* val = app.add_subcommand("validate", "fluid validations through the engine");
+  val->require_subcommand(1);
+  register_water(val);
+  register_settling(val);
+  register_pour(val);
+  register_suspension(val);
+  register_steel_balls(val);
 }
 
 void register_calibrate(CLI::App& app) {

@@ -50,16 +50,118 @@ std::string plot(const std::filesystem::path& csv, const std::filesystem::path& 
   return "";
 }
 
+struct PourOpts {
+  int seeds = 15;
+  std::string out = "out/fluid/ball_pour";
+  validation::FunnelPour pour;
+  PasteOpts paste;
+};
+
+// The set-up line and the lab's result, then the table's header.
+void print_pour_header(const validation::FunnelPour& p, const Paste& paste) {
+  const double tr = validation::rayleigh_time(p);
+  fmt::print("{} balls of {} mm ({} kg/m3) in the funnel ({} cm top, {} cm exit, {} cm cone + {} cm tube) on a plate "
+             "removed at {} s; fall {} cm to the paste (frame {} x {} cm, paste {} cm); steel e {:.4g}, mu {:.4g} "
+             "({}); dt {:.3g} s = {} x Rayleigh time {:.3g} s\nlab: all balls suspended, Z = 8.5-13.5 cm (Z: ball "
+             "centre above the frame bottom)\n",
+             p.balls, 1e3 * p.ball_d, p.rho_ball, 100 * p.top_d, 100 * p.exit_d, 100 * p.cone_h, 100 * p.tube,
+             p.release, 100 * p.fall, 100 * p.box_x, 100 * p.box_y, 100 * p.paste_depth, p.restitution, p.friction,
+             paste.ball_from, p.dt_rayleigh * tr, p.dt_rayleigh, tr);
+  fmt::print("{:>5} {:>9} {:>9} {:>10} {:>9} {:>9} {:>9} {:>8} {:>7} {:>7} {:>7}\n", "seed", "Z min cm", "Z max cm",
+             "suspended", "in funnel", "1st out s", "last out", "t end s", "ids", "wall s", "cpu s");
+}
+
+// What the seeds add up to (Z in m), and the CSV rows of every ball.
+struct PourTally {
+  double lo = 1e300, hi = -1e300;
+  long total = 0, suspended = 0, in_band = 0, stuck = 0, floor = 0;
+  bool ids_ok = true;
+  std::string rows = "seed,ball,x_m,y_m,z_m,in_funnel,below_surface\n";
+};
+
+// Seed k's run: its balls into the tally and the CSV, and its table row.
+void pour_seed(const validation::FunnelPour& p, int k, PourTally& t) {
+  // Wall time, and the process's CPU time (one thread: what the run costs on an idle core; the wall time
+  // on a shared machine also counts the time other processes held the core).
+  const auto t1 = std::chrono::steady_clock::now();
+  const std::clock_t c1 = std::clock();
+  const auto b = validation::ball_pour(p, static_cast<std::uint64_t>(k));
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+  const double cpu = static_cast<double>(std::clock() - c1) / CLOCKS_PER_SEC;
+  const double top = p.paste_depth + p.fall;
+  for (std::size_t a = 0; a < b.z.size(); ++a) {
+    const bool funnel = b.z[a] + 0.5 * p.ball_d > top;
+    t.rows += fmt::format("{},{},{:.6f},{:.6f},{:.6f},{},{}\n", k, b.id[a], b.x[a], b.y[a], b.z[a], int(funnel),
+                          int(!funnel && b.z[a] < p.paste_depth));
+    t.in_band += !funnel && b.z[a] >= 0.085 && b.z[a] <= 0.135;
+  }
+  t.total += static_cast<long>(b.z.size());
+  t.suspended += b.at_rest, t.stuck += b.in_funnel, t.floor += b.on_floor, t.ids_ok = t.ids_ok && b.ids_ok;
+  if (b.in_funnel < p.balls) t.lo = std::min(t.lo, b.z_min), t.hi = std::max(t.hi, b.z_max);
+  fmt::print("{:>5} {:>9.2f} {:>9.2f} {:>10} {:>9} {:>9.3f} {:>9.3f} {:>8.3f} {:>7} {:>7.1f} {:>7.1f}\n", k, 100 * b.z_min,
+             100 * b.z_max, b.at_rest, b.in_funnel, b.first_out, b.last_out, b.t_end, b.ids_ok ? "ok" : "LOST",
+             wall, cpu);
+  std::fflush(stdout);
+}
+
+// ball_pour.csv and, if the plotting script succeeds, its two PNGs, all or none (StagedOutput).
+void write_pour_outputs(const std::string& out, const std::string& rows) {
+  namespace fs = std::filesystem;
+  const fs::path dir = out;
+  fs::create_directories(dir);
+  StagedOutput staged;
+  const fs::path csv = staged.path(dir / "ball_pour.csv");
+  {
+    std::FILE* f = std::fopen(csv.c_str(), "w");
+    if (!f || std::fputs(rows.c_str(), f) < 0 || std::fclose(f) != 0)
+      throw RuntimeFailure(fmt::format("cannot write {}", csv.string()));
+  }
+  // The PNGs are drawn under temporary names and staged only if the script succeeded.
+  const fs::path tmaps = dir / ".ball_pour_maps.tmp.png", thist = dir / ".ball_pour_z.tmp.png";
+  const std::string why = plot(csv, tmaps, thist);
+  if (why.empty()) {
+    fs::rename(tmaps, staged.path(dir / "ball_pour_maps.png"));
+    fs::rename(thist, staged.path(dir / "ball_pour_z.png"));
+  } else {
+    std::error_code ec;
+    fs::remove(tmaps, ec), fs::remove(thist, ec);
+  }
+  staged.commit();
+  fmt::print("wrote {}\n", (dir / "ball_pour.csv").string());
+  if (why.empty())
+    fmt::print("wrote {} and {}\n", (dir / "ball_pour_maps.png").string(), (dir / "ball_pour_z.png").string());
+  else
+    fmt::print(stderr, "warning: no PNG maps written: {}\n", why);
+}
+
+void run_pour(const PourOpts& o) {
+  if (o.seeds < 1) throw InputError("--seeds", 0, "seeds", "must be at least 1");
+  if (!(o.pour.dt_rayleigh > 0.0)) throw InputError("--dt-rayleigh", 0, "dt-rayleigh", "must be positive");
+  const Paste paste = resolve_paste(o.paste);
+  validation::FunnelPour p = o.pour;
+  p.tau_y = paste.tau_y, p.rho_paste = paste.rho, p.eta_B = paste.eta, p.curve = paste.curve;
+  p.restitution = paste.ball_restitution, p.friction = paste.ball_friction;
+  print_paste(paste);
+  print_pour_header(p, paste);
+  PourTally t;
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::clock_t c0 = std::clock();
+  for (int k = 1; k <= o.seeds; ++k) pour_seed(p, k, t);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double cpu = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
+  const double n = static_cast<double>(t.total);
+  fmt::print("all {} seeds: Z = {:.2f}-{:.2f} cm (lab 8.5-13.5); suspended at rest {}/{} ({:.1f} %); inside "
+             "8.5-13.5 cm {}/{} ({:.1f} %); on the floor {}; left in the funnel {}; ids {}; {:.1f} s wall, {:.1f} s CPU ({:.1f} s CPU per seed)\n",
+             o.seeds, 100 * t.lo, 100 * t.hi, t.suspended, t.total, 100.0 * static_cast<double>(t.suspended) / n,
+             t.in_band, t.total, 100.0 * static_cast<double>(t.in_band) / n, t.floor, t.stuck,
+             t.ids_ok ? "conserved" : "NOT conserved", wall, cpu, cpu / o.seeds);
+  write_pour_outputs(o.out, t.rows);
+}
+
 }  // namespace
 
 void register_pour(CLI::App* val) {
-  struct Opts {
-    int seeds = 15;
-    std::string out = "out/fluid/ball_pour";
-    validation::FunnelPour pour;
-    PasteOpts paste;
-  };
-  auto o = std::make_shared<Opts>();
+  auto o = std::make_shared<PourOpts>();
   CLI::App* cmd = val->add_subcommand(
       "ball-pour", "68 balls of 12.6 mm poured from the funnel, 15 cm fall into the paste: Z range and maps");
   cmd->add_option("--seeds", o->seeds, "seeded runs 1..N (default 15, as the thesis)");
@@ -71,88 +173,7 @@ void register_pour(CLI::App* val) {
   cmd->add_option("--exit-diameter", o->pour.exit_d, "funnel exit diameter (m), default 0.04");
   cmd->add_option("--out", o->out, "folder for ball_pour.csv, ball_pour_maps.png, ball_pour_z.png");
   add_paste_options(cmd, o->paste);
-  cmd->callback([o] {
-    if (o->seeds < 1) throw InputError("--seeds", 0, "seeds", "must be at least 1");
-    if (!(o->pour.dt_rayleigh > 0.0)) throw InputError("--dt-rayleigh", 0, "dt-rayleigh", "must be positive");
-    const Paste paste = resolve_paste(o->paste);
-    validation::FunnelPour p = o->pour;
-    p.tau_y = paste.tau_y, p.rho_paste = paste.rho, p.eta_B = paste.eta, p.curve = paste.curve;
-    p.restitution = paste.ball_restitution, p.friction = paste.ball_friction;
-    print_paste(paste);
-    const double tr = validation::rayleigh_time(p);
-    fmt::print("{} balls of {} mm ({} kg/m3) in the funnel ({} cm top, {} cm exit, {} cm cone + {} cm tube) on a plate "
-               "removed at {} s; fall {} cm to the paste (frame {} x {} cm, paste {} cm); steel e {:.4g}, mu {:.4g} "
-               "({}); dt {:.3g} s = {} x Rayleigh time {:.3g} s\nlab: all balls suspended, Z = 8.5-13.5 cm (Z: ball "
-               "centre above the frame bottom)\n",
-               p.balls, 1e3 * p.ball_d, p.rho_ball, 100 * p.top_d, 100 * p.exit_d, 100 * p.cone_h, 100 * p.tube,
-               p.release, 100 * p.fall, 100 * p.box_x, 100 * p.box_y, 100 * p.paste_depth, p.restitution, p.friction,
-               paste.ball_from, p.dt_rayleigh * tr, p.dt_rayleigh, tr);
-    fmt::print("{:>5} {:>9} {:>9} {:>10} {:>9} {:>9} {:>9} {:>8} {:>7} {:>7} {:>7}\n", "seed", "Z min cm", "Z max cm",
-               "suspended", "in funnel", "1st out s", "last out", "t end s", "ids", "wall s", "cpu s");
-    double lo = 1e300, hi = -1e300;
-    long total = 0, suspended = 0, in_band = 0, stuck = 0, floor = 0;
-    bool ids_ok = true;
-    std::string rows = "seed,ball,x_m,y_m,z_m,in_funnel,below_surface\n";
-    // Wall time, and the process's CPU time (one thread: what the run costs on an idle core; the wall time
-    // on a shared machine also counts the time other processes held the core).
-    const auto t0 = std::chrono::steady_clock::now();
-    const std::clock_t c0 = std::clock();
-    for (int k = 1; k <= o->seeds; ++k) {
-      const auto t1 = std::chrono::steady_clock::now();
-      const std::clock_t c1 = std::clock();
-      const auto b = validation::ball_pour(p, static_cast<std::uint64_t>(k));
-      const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
-      const double cpu = static_cast<double>(std::clock() - c1) / CLOCKS_PER_SEC;
-      const double top = p.paste_depth + p.fall;
-      for (std::size_t a = 0; a < b.z.size(); ++a) {
-        const bool funnel = b.z[a] + 0.5 * p.ball_d > top;
-        rows += fmt::format("{},{},{:.6f},{:.6f},{:.6f},{},{}\n", k, b.id[a], b.x[a], b.y[a], b.z[a], int(funnel),
-                            int(!funnel && b.z[a] < p.paste_depth));
-        in_band += !funnel && b.z[a] >= 0.085 && b.z[a] <= 0.135;
-      }
-      total += static_cast<long>(b.z.size());
-      suspended += b.at_rest, stuck += b.in_funnel, floor += b.on_floor, ids_ok = ids_ok && b.ids_ok;
-      if (b.in_funnel < p.balls) lo = std::min(lo, b.z_min), hi = std::max(hi, b.z_max);
-      fmt::print("{:>5} {:>9.2f} {:>9.2f} {:>10} {:>9} {:>9.3f} {:>9.3f} {:>8.3f} {:>7} {:>7.1f} {:>7.1f}\n", k, 100 * b.z_min,
-                 100 * b.z_max, b.at_rest, b.in_funnel, b.first_out, b.last_out, b.t_end, b.ids_ok ? "ok" : "LOST",
-                 wall, cpu);
-      std::fflush(stdout);
-    }
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    const double cpu = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
-    const double n = static_cast<double>(total);
-    fmt::print("all {} seeds: Z = {:.2f}-{:.2f} cm (lab 8.5-13.5); suspended at rest {}/{} ({:.1f} %); inside "
-               "8.5-13.5 cm {}/{} ({:.1f} %); on the floor {}; left in the funnel {}; ids {}; {:.1f} s wall, {:.1f} s CPU ({:.1f} s CPU per seed)\n",
-               o->seeds, 100 * lo, 100 * hi, suspended, total, 100.0 * static_cast<double>(suspended) / n, in_band, total,
-               100.0 * static_cast<double>(in_band) / n, floor, stuck, ids_ok ? "conserved" : "NOT conserved", wall, cpu,
-               cpu / o->seeds);
-    namespace fs = std::filesystem;
-    const fs::path dir = o->out;
-    fs::create_directories(dir);
-    StagedOutput staged;
-    const fs::path csv = staged.path(dir / "ball_pour.csv");
-    {
-      std::FILE* f = std::fopen(csv.c_str(), "w");
-      if (!f || std::fputs(rows.c_str(), f) < 0 || std::fclose(f) != 0)
-        throw RuntimeFailure(fmt::format("cannot write {}", csv.string()));
-    }
-    // The PNGs are drawn under temporary names and staged only if the script succeeded.
-    const fs::path tmaps = dir / ".ball_pour_maps.tmp.png", thist = dir / ".ball_pour_z.tmp.png";
-    const std::string why = plot(csv, tmaps, thist);
-    if (why.empty()) {
-      fs::rename(tmaps, staged.path(dir / "ball_pour_maps.png"));
-      fs::rename(thist, staged.path(dir / "ball_pour_z.png"));
-    } else {
-      std::error_code ec;
-      fs::remove(tmaps, ec), fs::remove(thist, ec);
-    }
-    staged.commit();
-    fmt::print("wrote {}\n", (dir / "ball_pour.csv").string());
-    if (why.empty())
-      fmt::print("wrote {} and {}\n", (dir / "ball_pour_maps.png").string(), (dir / "ball_pour_z.png").string());
-    else
-      fmt::print(stderr, "warning: no PNG maps written: {}\n", why);
-  });
+  cmd->callback([o] { run_pour(*o); });
 }
 
 }  // namespace pastemix::app

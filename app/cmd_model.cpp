@@ -89,22 +89,76 @@ void reject_factory_seeds(const model::SceneDoc& doc) {
                        "between realizations (remove it)");
 }
 
+struct RunCli {
+  std::string scene;
+  std::string out = ".";
+  int threads = 0;
+  bool quiet = false;
+  std::vector<std::string> sets;
+  std::string overrides;
+  int realizations = 0;
+  long seed = -1;
+  double checkpoint_every = 0.0;
+  std::string resume;
+};
+
+// The checkpoint settings and the command that continues this run (stored in its checkpoints, quoted in
+// messages).
+Resume resume_of(const RunCli& o) {
+  Resume rs;
+  rs.wall_every = o.checkpoint_every;
+  rs.resume = !o.resume.empty();
+  rs.command = fmt::format("pastemix run {} --resume {}", o.scene, o.out);
+  if (!o.overrides.empty()) rs.command += " --overrides " + o.overrides;
+  for (const auto& s : o.sets) rs.command += " --set " + s;
+  if (o.realizations > 0) rs.command += fmt::format(" --realizations {}", o.realizations);
+  if (o.seed >= 0) rs.command += fmt::format(" --seed {}", o.seed);
+  return rs;
+}
+
+// --realizations N: every realization set up (and checked) before anything is written, then run in turn.
+void run_realizations(const RunCli& o, const model::SceneDoc& doc, const Resume& rs) {
+  reject_factory_seeds(doc);
+  const long first = o.seed >= 0 ? o.seed : static_cast<long>(doc.load().seed);
+  std::vector<model::Scene> scenes;
+  for (int k = 0; k < o.realizations; ++k) {
+    model::SceneDoc dk = doc;
+    dk.apply(fmt::format("seed={}", first + k));
+    scenes.push_back(dk.load());
+  }
+  const std::string stem = std::filesystem::path(o.scene).stem().string();
+  std::vector<char> todo;
+  for (int k = 0; k < o.realizations; ++k) todo.push_back(should_run(o.out, fmt::format("{}_r{}", stem, k), rs));
+  for (int k = 0; k < o.realizations; ++k) {
+    const std::string sk = fmt::format("{}_r{}", stem, k);
+    if (!todo[static_cast<std::size_t>(k)]) continue;
+    fmt::print("realization {} of {}: seed {}\n", k + 1, o.realizations, first + k);
+    run_one(scenes[static_cast<std::size_t>(k)], o.out, o.quiet, sk, rs);
+  }
+}
+
+void run_command(RunCli& o, const CLI::App& run) {
+  // 0 or a negative count used to mean "all cores" silently.
+  if (run.count("--threads") && o.threads < 1)
+    throw InputError("--threads", 0, "", fmt::format("expected a thread count >= 1, got {}", o.threads));
+  if (o.threads > 0) omp_set_num_threads(o.threads);
+  if (!o.resume.empty()) {
+    if (run.count("--out") && std::filesystem::path(o.out) != std::filesystem::path(o.resume))
+      throw InputError("--resume", 0, "", fmt::format("resumes into its own folder {}; --out {} differs", o.resume, o.out));
+    o.out = o.resume;
+  }
+  const Resume rs = resume_of(o);
+  model::SceneDoc doc = model::scene_with_overrides(o.scene, o.overrides, o.sets);
+  if (o.realizations > 0) return run_realizations(o, doc, rs);
+  if (o.seed >= 0) doc.apply(fmt::format("seed={}", o.seed));
+  const model::Scene scene = doc.load();
+  if (should_run(o.out, std::filesystem::path(scene.path).stem().string(), rs)) run_one(scene, o.out, o.quiet, "", rs);
+}
+
 }  // namespace
 
 void register_model_commands(CLI::App& app) {
-  struct Opts {
-    std::string scene;
-    std::string out = ".";
-    int threads = 0;
-    bool quiet = false;
-    std::vector<std::string> sets;
-    std::string overrides;
-    int realizations = 0;
-    long seed = -1;
-    double checkpoint_every = 0.0;
-    std::string resume;
-  };
-  auto opts = std::make_shared<Opts>();
+  auto opts = std::make_shared<RunCli>();
   CLI::App* run = app.add_subcommand("run", "run an f-DEM scene (TOML) and write <stem>.h5 + <stem>.xmf");
   run->add_option("scene", opts->scene, "scene file (TOML, format in model/scene.h)")->required();
   run->add_option("--out", opts->out, "output folder (default: current)");
@@ -121,52 +175,7 @@ void register_model_commands(CLI::App& app) {
       ->check(CLI::PositiveNumber);
   run->add_option("--resume", opts->resume,
                   "continue the interrupted run whose checkpoint is in DIR (its output folder; same scene and --set)");
-  run->callback([opts, run] {
-    // 0 or a negative count used to mean "all cores" silently.
-    if (run->count("--threads") && opts->threads < 1)
-      throw InputError("--threads", 0, "", fmt::format("expected a thread count >= 1, got {}", opts->threads));
-    if (opts->threads > 0) omp_set_num_threads(opts->threads);
-    if (!opts->resume.empty()) {
-      if (run->count("--out") && std::filesystem::path(opts->out) != std::filesystem::path(opts->resume))
-        throw InputError("--resume", 0, "", fmt::format("resumes into its own folder {}; --out {} differs", opts->resume, opts->out));
-      opts->out = opts->resume;
-    }
-    Resume rs;
-    rs.wall_every = opts->checkpoint_every;
-    rs.resume = !opts->resume.empty();
-    // The command that continues this run (stored in its checkpoints, quoted in messages).
-    rs.command = fmt::format("pastemix run {} --resume {}", opts->scene, opts->out);
-    if (!opts->overrides.empty()) rs.command += " --overrides " + opts->overrides;
-    for (const auto& s : opts->sets) rs.command += " --set " + s;
-    if (opts->realizations > 0) rs.command += fmt::format(" --realizations {}", opts->realizations);
-    if (opts->seed >= 0) rs.command += fmt::format(" --seed {}", opts->seed);
-    model::SceneDoc doc = model::scene_with_overrides(opts->scene, opts->overrides, opts->sets);
-    if (opts->realizations == 0) {
-      if (opts->seed >= 0) doc.apply(fmt::format("seed={}", opts->seed));
-      const model::Scene scene = doc.load();
-      if (should_run(opts->out, std::filesystem::path(scene.path).stem().string(), rs))
-        run_one(scene, opts->out, opts->quiet, "", rs);
-      return;
-    }
-    reject_factory_seeds(doc);
-    const long first = opts->seed >= 0 ? opts->seed : static_cast<long>(doc.load().seed);
-    // All realizations are set up (and checked) before anything is written.
-    std::vector<model::Scene> scenes;
-    for (int k = 0; k < opts->realizations; ++k) {
-      model::SceneDoc dk = doc;
-      dk.apply(fmt::format("seed={}", first + k));
-      scenes.push_back(dk.load());
-    }
-    const std::string stem = std::filesystem::path(opts->scene).stem().string();
-    std::vector<char> todo;
-    for (int k = 0; k < opts->realizations; ++k) todo.push_back(should_run(opts->out, fmt::format("{}_r{}", stem, k), rs));
-    for (int k = 0; k < opts->realizations; ++k) {
-      const std::string sk = fmt::format("{}_r{}", stem, k);
-      if (!todo[static_cast<std::size_t>(k)]) continue;
-      fmt::print("realization {} of {}: seed {}\n", k + 1, opts->realizations, first + k);
-      run_one(scenes[static_cast<std::size_t>(k)], opts->out, opts->quiet, sk, rs);
-    }
-  });
+  run->callback([opts, run] { run_command(*opts, *run); });
 }
 
 }  // namespace pastemix::app

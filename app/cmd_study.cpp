@@ -103,17 +103,30 @@ void register_rheology(CLI::App* cal) {
   });
 }
 
-}  // namespace
+struct SweepCli {
+  std::string scene;
+  study::SweepOptions o;
+  std::vector<std::string> sets;
+  std::string overrides;
+  bool no_cache = false;
+};
 
-void register_study_commands(CLI::App& app) {
-  struct Opts {
-    std::string scene;
-    study::SweepOptions o;
-    std::vector<std::string> sets;
-    std::string overrides;
-    bool no_cache = false;
-  };
-  auto opts = std::make_shared<Opts>();
+void run_sweep(SweepCli& c) {
+  if (c.o.runs.empty() && !c.no_cache) c.o.runs = c.o.out / "runs";
+  if (c.no_cache) c.o.runs.clear();
+  c.o.engine = lab::software_version();
+  const model::SceneDoc base = model::scene_with_overrides(c.scene, c.overrides, c.sets);
+  const study::SweepResult r = study::sweep(base, c.o);
+  fmt::print("{}", r.table);
+  if (!c.o.runs.empty())
+    fmt::print("runs: {} done now, {} read back from {}\n", r.executed, r.read_back, c.o.runs.string());
+  study::write_outputs(r, c.o);
+  fmt::print("wrote {0}/sweep.csv, {0}/sweep.png{1}\n", c.o.out.string(),
+             r.override_text.empty() ? "" : fmt::format(", {}/chosen_overrides.toml", c.o.out.string()));
+}
+
+void register_sweep(CLI::App& app) {
+  auto opts = std::make_shared<SweepCli>();
   std::string qoi_help = "quantity of interest:";
   for (const auto& q : study::qoi_registry()) qoi_help += " " + q.name + " (" + q.unit + ")";
   CLI::App* s = app.add_subcommand("sweep", "speed against error: run a scene over a ladder of one setting");
@@ -135,32 +148,54 @@ void register_study_commands(CLI::App& app) {
   s->add_option("--jobs", opts->o.jobs, "runs at once, one thread each (default 1: one run with the OpenMP threads)");
   s->add_option("--runs", opts->o.runs, "folder of finished-run records, read back by a rerun (default <out>/runs)");
   s->add_flag("--no-cache", opts->no_cache, "keep no run records and read none: every run is done");
-  s->callback([opts] {
-    if (opts->o.runs.empty() && !opts->no_cache) opts->o.runs = opts->o.out / "runs";
-    if (opts->no_cache) opts->o.runs.clear();
-    opts->o.engine = lab::software_version();
-    const model::SceneDoc base = model::scene_with_overrides(opts->scene, opts->overrides, opts->sets);
-    const study::SweepResult r = study::sweep(base, opts->o);
-    fmt::print("{}", r.table);
-    if (!opts->o.runs.empty())
-      fmt::print("runs: {} done now, {} read back from {}\n", r.executed, r.read_back, opts->o.runs.string());
-    study::write_outputs(r, opts->o);
-    fmt::print("wrote {0}/sweep.csv, {0}/sweep.png{1}\n", opts->o.out.string(),
-               r.override_text.empty() ? "" : fmt::format(", {}/chosen_overrides.toml", opts->o.out.string()));
-  });
+  s->callback([opts] { run_sweep(*opts); });
+}
 
-  struct CalOpts {
-    std::string scene;
-    double target = 0.0, tol_deg = 0.5, mu_tol = 0.005;
-    std::vector<double> bracket;
-    int seeds = 1, max_evaluations = 8;
-    std::vector<std::string> sets;
-    std::string overrides;
-    std::string out = "out/calibrate/rolling_resistance";
-    bool no_cache = false;
+struct RollingCli {
+  std::string scene;
+  double target = 0.0, tol_deg = 0.5, mu_tol = 0.005;
+  std::vector<double> bracket;
+  int seeds = 1, max_evaluations = 8;
+  std::vector<std::string> sets;
+  std::string overrides;
+  std::string out = "out/calibrate/rolling_resistance";
+  bool no_cache = false;
+};
+
+void run_rolling_resistance(const RollingCli& c) {
+  const model::SceneDoc base = model::scene_with_overrides(c.scene, c.overrides, c.sets);
+  const long seed0 = base.has("seed") ? std::stol(base.get("seed")) : 1;
+  const study::RunCache cache(c.no_cache ? std::filesystem::path{} : std::filesystem::path(c.out) / "runs");
+  const std::string engine = lab::software_version();
+  // The repose angle at mu_r (deg): mean and sd over the seeds, each pile read back from the cache if kept.
+  auto f = [&](double mu) {
+    std::vector<double> angles;
+    for (int k = 0; k < c.seeds; ++k) {
+      model::SceneDoc d = study::with_rolling_resistance(base, mu);
+      if (c.seeds > 1) d.set("seed", std::to_string(seed0 + k));
+      bool on_disk = false;
+      const auto r = study::cached_run_once(d, "repose_angle", cache,
+                                            fmt::format("rolling-resistance mu_r = {:.10g} seed {}", mu, seed0 + k),
+                                            engine, on_disk);
+      angles.push_back(r.qoi);
+      fmt::print(stderr, "  mu_r = {:.4f} seed {}: {:.2f} deg ({:.1f} s){}\n", mu, seed0 + k, r.qoi, r.wall_s,
+                 on_disk ? " (on disk)" : "");
+    }
+    const auto st = summarize(angles);
+    return study::Evaluation{mu, st.mean, c.seeds > 1 ? st.sd : 0.0};
   };
-  auto c = std::make_shared<CalOpts>();
-  CLI::App* cal = group_subcommand(app, "calibrate", "calibrate an unmeasurable parameter against lab tests");
+  const auto r = study::bracket_root(f, c.bracket[0], c.bracket[1], c.target, c.tol_deg, c.mu_tol,
+                                     c.max_evaluations);
+  fmt::print("rolling law: {}; target {:.2f} deg\n", base.get("contact.rolling"), c.target);
+  fmt::print("  {:>8} | {:>10} | {:>6}\n", "mu_r", "angle deg", "sd");
+  for (const auto& e : r.history) fmt::print("  {:>8.4f} | {:>10.2f} | {:>6.2f}\n", e.mu, e.angle, e.sd);
+  fmt::print("mu_r = {:.4f}: angle {:.2f} +- {:.2f} deg (seed sd, {} seed(s)), objective |angle - target| = "
+             "{:.2f} deg{}\n", r.mu, r.best.angle, r.best.sd, c.seeds, std::abs(r.best.angle - c.target),
+             r.converged ? "" : " (NOT within --tol-deg: more evaluations or seeds needed)");
+}
+
+void register_rolling_resistance(CLI::App* cal) {
+  auto c = std::make_shared<RollingCli>();
   CLI::App* rr = cal->add_subcommand("rolling-resistance",
                                      "mu_r (all [[interaction]]s) so that the simulated repose angle = the measured");
   rr->add_option("scene", c->scene, "repose scene (e.g. datasets/scenes/repose_ch5.toml)")->required();
@@ -175,36 +210,15 @@ void register_study_commands(CLI::App& app) {
   rr->add_option("--out", c->out, "folder whose runs/ keeps every finished pile, read back by a rerun "
                                   "(default out/calibrate/rolling_resistance)");
   rr->add_flag("--no-cache", c->no_cache, "keep no run records and read none: every pile is run");
-  rr->callback([c] {
-    const model::SceneDoc base = model::scene_with_overrides(c->scene, c->overrides, c->sets);
-    const long seed0 = base.has("seed") ? std::stol(base.get("seed")) : 1;
-    const study::RunCache cache(c->no_cache ? std::filesystem::path{} : std::filesystem::path(c->out) / "runs");
-    const std::string engine = lab::software_version();
-    auto f = [&](double mu) {
-      std::vector<double> angles;
-      for (int k = 0; k < c->seeds; ++k) {
-        model::SceneDoc d = study::with_rolling_resistance(base, mu);
-        if (c->seeds > 1) d.set("seed", std::to_string(seed0 + k));
-        bool on_disk = false;
-        const auto r = study::cached_run_once(d, "repose_angle", cache,
-                                              fmt::format("rolling-resistance mu_r = {:.10g} seed {}", mu, seed0 + k),
-                                              engine, on_disk);
-        angles.push_back(r.qoi);
-        fmt::print(stderr, "  mu_r = {:.4f} seed {}: {:.2f} deg ({:.1f} s){}\n", mu, seed0 + k, r.qoi, r.wall_s,
-                   on_disk ? " (on disk)" : "");
-      }
-      const auto st = summarize(angles);
-      return study::Evaluation{mu, st.mean, c->seeds > 1 ? st.sd : 0.0};
-    };
-    const auto r = study::bracket_root(f, c->bracket[0], c->bracket[1], c->target, c->tol_deg, c->mu_tol,
-                                       c->max_evaluations);
-    fmt::print("rolling law: {}; target {:.2f} deg\n", base.get("contact.rolling"), c->target);
-    fmt::print("  {:>8} | {:>10} | {:>6}\n", "mu_r", "angle deg", "sd");
-    for (const auto& e : r.history) fmt::print("  {:>8.4f} | {:>10.2f} | {:>6.2f}\n", e.mu, e.angle, e.sd);
-    fmt::print("mu_r = {:.4f}: angle {:.2f} +- {:.2f} deg (seed sd, {} seed(s)), objective |angle - target| = "
-               "{:.2f} deg{}\n", r.mu, r.best.angle, r.best.sd, c->seeds, std::abs(r.best.angle - c->target),
-               r.converged ? "" : " (NOT within --tol-deg: more evaluations or seeds needed)");
-  });
+  rr->callback([c] { run_rolling_resistance(*c); });
+}
+
+}  // namespace
+
+void register_study_commands(CLI::App& app) {
+  register_sweep(app);
+  CLI::App* cal = group_subcommand(app, "calibrate", "calibrate an unmeasurable parameter against lab tests");
+  register_rolling_resistance(cal);
   register_rheology(cal);
 }
 

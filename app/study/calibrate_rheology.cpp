@@ -5,6 +5,7 @@
 #include <atomic>
 #include <cmath>
 #include <mutex>
+#include <optional>
 #include <thread>
 
 #include <Eigen/Dense>
@@ -272,6 +273,47 @@ QuadFit fit_quadratic(const std::vector<double>& p, const std::vector<double>& J
   return f;
 }
 
+namespace {
+
+// The per-layer rock target (kg): --target-layers, or the lab case's grid summed per layer (its solids fraction
+// must be the scene's).
+void read_target(const model::SceneDoc& base, const RheologyCalOptions& o, RheologyCalResult& r) {
+  if (o.target_layers) {
+    r.target = *o.target_layers;
+    r.target_source = "--target-layers";
+  } else {
+    const analysis::LabCase lab = analysis::read_lab_case(o.lab_h5, o.case_id, true);
+    if (std::abs(lab.solids_fraction - r.solids_fraction) > 1e-9)
+      throw InputError(base.path(), 0, "fluid.solids_fraction",
+                       fmt::format("{:g}, but case {} was run at {:g} ({})", r.solids_fraction, o.case_id,
+                                   lab.solids_fraction, o.lab_h5.string()));
+    for (int b = 0; b < lab::kBlocks; ++b) r.target[static_cast<std::size_t>(b % lab::kLayers)] += lab.grid.M_wr[b];
+    r.target_source = fmt::format("{} case {} (sum of M_wr per layer)", o.lab_h5.string(), o.case_id);
+  }
+  for (double t : r.target)
+    if (!(t > 0.0)) throw InputError(r.target_source, 0, "layers", "every target layer mass must be positive (kg)");
+}
+
+// The three shapes of the next refinement round: the surrogate's vertex (or, with no minimum yet, the best
+// point) and one step either side, inside the prior; none when no point has succeeded.
+std::optional<std::vector<double>> refinement(const RheologyCalResult& r) {
+  const double range = r.prior.hi - r.prior.lo;
+  const QuadFit f = fit_near_best(r.points);
+  double v = f.vertex;
+  if (!(f.c2 > 0.0)) {  // no minimum yet: refine around the best point
+    const CalPoint* best = nullptr;
+    for (const auto& p : r.points)
+      if (p.failure.empty() && (!best || p.J < best->J)) best = &p;
+    if (!best) return std::nullopt;
+    v = best->shape;
+  }
+  v = std::clamp(v, r.prior.lo, r.prior.hi);
+  const double h = std::clamp(2.0 * f.sd, 0.025 * range, 0.25 * range);
+  return std::vector<double>{v, std::max(r.prior.lo, v - h), std::min(r.prior.hi, v + h)};
+}
+
+}  // namespace
+
 RheologyCalResult calibrate_rheology(const model::SceneDoc& base, const RheologyCalOptions& o) {
   if (o.seeds < 1) throw InputError("", 0, "--seeds", "must be >= 1");
   if (o.jobs < 1) throw InputError("", 0, "--jobs", "must be >= 1");
@@ -287,20 +329,7 @@ RheologyCalResult calibrate_rheology(const model::SceneDoc& base, const Rheology
   r.prior = rh::prior(r.model.family, r.model.anchor);
   for (double v : o.values) rh::check_shape(r.model.family, r.model.anchor, v, "--values");
   r.solids_fraction = scene_solids(base);
-  if (o.target_layers) {
-    r.target = *o.target_layers;
-    r.target_source = "--target-layers";
-  } else {
-    const analysis::LabCase lab = analysis::read_lab_case(o.lab_h5, o.case_id, true);
-    if (std::abs(lab.solids_fraction - r.solids_fraction) > 1e-9)
-      throw InputError(base.path(), 0, "fluid.solids_fraction",
-                       fmt::format("{:g}, but case {} was run at {:g} ({})", r.solids_fraction, o.case_id,
-                                   lab.solids_fraction, o.lab_h5.string()));
-    for (int b = 0; b < lab::kBlocks; ++b) r.target[static_cast<std::size_t>(b % lab::kLayers)] += lab.grid.M_wr[b];
-    r.target_source = fmt::format("{} case {} (sum of M_wr per layer)", o.lab_h5.string(), o.case_id);
-  }
-  for (double t : r.target)
-    if (!(t > 0.0)) throw InputError(r.target_source, 0, "layers", "every target layer mass must be positive (kg)");
+  read_target(base, o, r);
   const double range = r.prior.hi - r.prior.lo, gap = 1e-4 * range;
   std::vector<double> grid = o.values;
   if (grid.empty())
@@ -309,20 +338,10 @@ RheologyCalResult calibrate_rheology(const model::SceneDoc& base, const Rheology
   add_points(r.points, tasks, grid, base, r.model, r.solids_fraction, o, gap);
   run_tasks(r.points, tasks, o, r.target, r.runs_executed);
   for (int round = 0; round < o.refine; ++round) {
-    const QuadFit f = fit_near_best(r.points);
-    double v = f.vertex;
-    if (!(f.c2 > 0.0)) {  // no minimum yet: refine around the best point
-      const CalPoint* best = nullptr;
-      for (const auto& p : r.points)
-        if (p.failure.empty() && (!best || p.J < best->J)) best = &p;
-      if (!best) break;
-      v = best->shape;
-    }
-    v = std::clamp(v, r.prior.lo, r.prior.hi);
-    const double h = std::clamp(2.0 * f.sd, 0.025 * range, 0.25 * range);
-    std::vector<double> add{v, std::max(r.prior.lo, v - h), std::min(r.prior.hi, v + h)};
+    const std::optional<std::vector<double>> add = refinement(r);
+    if (!add) break;
     tasks.clear();
-    add_points(r.points, tasks, add, base, r.model, r.solids_fraction, o, gap);
+    add_points(r.points, tasks, *add, base, r.model, r.solids_fraction, o, gap);
     if (tasks.empty()) break;
     run_tasks(r.points, tasks, o, r.target, r.runs_executed);
   }
