@@ -87,33 +87,30 @@ int snapshot_index(const H5Reader& h5, const std::string& file, std::optional<in
   return *chosen;
 }
 
-ResultSnapshot read_result(const fs::path& path, const ResultOverrides& over) {
-  const std::string file = path.string();
-  if (!fs::exists(path)) throw InputError(file, 0, "", "no such file");
-  if (!fs::is_regular_file(path)) throw InputError(file, 0, "", "not a regular file");
-  H5Reader h5(path);
-  // A checkpoint (model/checkpoint.h) holds the snapshots so far of a run that did not finish: its last
-  // one is not the final state a map is about.
+namespace {
+
+void check_is_file(const fs::path& path) {
+  if (!fs::exists(path)) throw InputError(path.string(), 0, "", "no such file");
+  if (!fs::is_regular_file(path)) throw InputError(path.string(), 0, "", "not a regular file");
+}
+
+// A checkpoint (model/checkpoint.h) holds the snapshots so far of a run that did not finish: its last one is
+// not the final state a map is about.
+void check_not_checkpoint(const H5Reader& h5, const std::string& file) {
   if (h5.exists("/checkpoint"))
     throw InputError(file, 0, "", fmt::format("the checkpoint of an interrupted run (stopped at t = {:.6g} s), not a "
                                               "result: continue it with `{}`",
                                               h5.attribute_double("/checkpoint", "time_s"),
                                               h5.attribute_string("/checkpoint", "resume_with")));
-  ResultSnapshot r;
-  r.path = file;
-  r.seed = h5.has_attribute("/", "seed") ? h5.attribute_int("/", "seed") : -1;
-  r.scene_hash = h5.has_attribute("/", "scene_hash") ? h5.attribute_string("/", "scene_hash") : "";
-  r.ensemble_key = h5.has_attribute("/", "scene_text") ? seedless_scene_key(h5.attribute_string("/", "scene_text"))
-                                                       : r.scene_hash;
+}
 
-  r.snapshot = snapshot_index(h5, file, over.snapshot);
-  const std::string g = fmt::format("/snapshots/{:06d}", r.snapshot);
-  r.time_s = h5.has_attribute(g, "time_s") ? h5.attribute_double(g, "time_s") : std::nan("");
-
+// Positions, radii (> 0) and velocities of snapshot group g; returns the particles' material indices.
+std::vector<std::int64_t> read_particles(const H5Reader& h5, const std::string& file, const std::string& g,
+                                         ResultSnapshot& r) {
   const auto pos = h5.read_doubles(g + "/position");
   const auto pdims = h5.dims(g + "/position");
   r.radius = h5.read_doubles(g + "/radius");
-  const auto mat = h5.read_ints(g + "/material");
+  std::vector<std::int64_t> mat = h5.read_ints(g + "/material");
   const std::size_t n = r.radius.size();
   if (pdims.size() != 2 || pdims[1] != 3 || pdims[0] != n)
     throw InputError(file, 0, fmt::format("dataset '{}/position'", g),
@@ -126,34 +123,44 @@ ResultSnapshot read_result(const fs::path& path, const ResultOverrides& over) {
       throw InputError(file, 0, fmt::format("dataset '{}/radius'", g),
                        fmt::format("particle {}: radius must be positive, got {}", p, r.radius[p]));
   }
-
   if (h5.exists(g + "/velocity")) {
     const auto vel = h5.read_doubles(g + "/velocity");
     if (vel.size() != 3 * n)
       throw InputError(file, 0, fmt::format("dataset '{}/velocity'", g), fmt::format("expected {} x 3 values", n));
     r.velocity = vectors_of(vel, file, g + "/velocity");
   }
+  return mat;
+}
 
-  // Material densities.
+// Every material's density (kg/m3, > 0) from /material_density; empty with --rock-density.
+std::vector<double> material_densities(const H5Reader& h5, const std::string& file, const ResultOverrides& over,
+                                       ResultSnapshot& r) {
   const auto names = h5.exists("/materials") ? h5.read_strings("/materials") : std::vector<std::string>{};
   std::vector<double> rho;
   if (over.rock_density) {
     r.density_source = fmt::format("command line --rock-density ({:g} kg/m3 for every particle)", *over.rock_density);
     r.notes.push_back(r.density_source + (h5.exists("/material_density") ? ", overriding /material_density" : ""));
-  } else {
-    if (!h5.exists("/material_density"))
-      throw InputError(file, 0, "dataset '/material_density'",
-                       "missing from the file (an engine that does not write it yet); give --rock-density (kg/m3)");
-    rho = h5.read_doubles("/material_density");
-    if (!names.empty() && rho.size() != names.size())
-      throw InputError(file, 0, "dataset '/material_density'",
-                       fmt::format("has {} values for {} materials in /materials", rho.size(), names.size()));
-    for (std::size_t m = 0; m < rho.size(); ++m)
-      if (!(rho[m] > 0.0) || !std::isfinite(rho[m]))
-        throw InputError(file, 0, "dataset '/material_density'",
-                         fmt::format("material {}: density must be positive, got {}", m, rho[m]));
-    r.density_source = "file dataset '/material_density'";
+    return rho;
   }
+  if (!h5.exists("/material_density"))
+    throw InputError(file, 0, "dataset '/material_density'",
+                     "missing from the file (an engine that does not write it yet); give --rock-density (kg/m3)");
+  rho = h5.read_doubles("/material_density");
+  if (!names.empty() && rho.size() != names.size())
+    throw InputError(file, 0, "dataset '/material_density'",
+                     fmt::format("has {} values for {} materials in /materials", rho.size(), names.size()));
+  for (std::size_t m = 0; m < rho.size(); ++m)
+    if (!(rho[m] > 0.0) || !std::isfinite(rho[m]))
+      throw InputError(file, 0, "dataset '/material_density'",
+                       fmt::format("material {}: density must be positive, got {}", m, rho[m]));
+  r.density_source = "file dataset '/material_density'";
+  return rho;
+}
+
+// Each particle's density (kg/m3) from its material, or --rock-density for all.
+void particle_densities(const std::string& file, const std::string& g, const std::vector<std::int64_t>& mat,
+                        const std::vector<double>& rho, const ResultOverrides& over, ResultSnapshot& r) {
+  const std::size_t n = r.radius.size();
   r.density.resize(n);
   for (std::size_t p = 0; p < n; ++p) {
     if (over.rock_density) {
@@ -166,25 +173,29 @@ ResultSnapshot read_result(const fs::path& path, const ResultOverrides& over) {
                                    rho.size()));
     r.density[p] = rho[static_cast<std::size_t>(mat[p])];
   }
+}
 
-  // Outflow: rock removed at the domain boundary up to the snapshot (removed at time <= the snapshot's).
-  if (h5.exists("/escaped/mass")) {
-    const auto em = h5.read_doubles("/escaped/mass");
-    const auto et = h5.read_doubles("/escaped/time");
-    if (et.size() != em.size())
-      throw InputError(file, 0, "dataset '/escaped/time'",
-                       fmt::format("has {} values for {} in /escaped/mass", et.size(), em.size()));
-    for (std::size_t e = 0; e < em.size(); ++e) {
-      if (!(em[e] > 0.0) || !std::isfinite(em[e]) || !std::isfinite(et[e]))
-        throw InputError(file, 0, "dataset '/escaped/mass'",
-                         fmt::format("entry {}: mass must be positive and finite, got {} (time {})", e, em[e], et[e]));
-      if (std::isnan(r.time_s) || et[e] <= r.time_s) {
-        r.escaped_mass += em[e];
-        ++r.escaped_count;
-      }
+// Outflow: rock removed at the domain boundary up to the snapshot (removed at time <= the snapshot's).
+void read_escaped(const H5Reader& h5, const std::string& file, ResultSnapshot& r) {
+  if (!h5.exists("/escaped/mass")) return;
+  const auto em = h5.read_doubles("/escaped/mass");
+  const auto et = h5.read_doubles("/escaped/time");
+  if (et.size() != em.size())
+    throw InputError(file, 0, "dataset '/escaped/time'",
+                     fmt::format("has {} values for {} in /escaped/mass", et.size(), em.size()));
+  for (std::size_t e = 0; e < em.size(); ++e) {
+    if (!(em[e] > 0.0) || !std::isfinite(em[e]) || !std::isfinite(et[e]))
+      throw InputError(file, 0, "dataset '/escaped/mass'",
+                       fmt::format("entry {}: mass must be positive and finite, got {} (time {})", e, em[e], et[e]));
+    if (std::isnan(r.time_s) || et[e] <= r.time_s) {
+      r.escaped_mass += em[e];
+      ++r.escaped_count;
     }
   }
+}
 
+// The paste's surface height (m), density (kg/m3) and solids fraction: file attributes or overrides, checked.
+void read_paste(const H5Reader& h5, const std::string& file, const ResultOverrides& over, ResultSnapshot& r) {
   r.surface_z = fluid_property(h5, file, "fluid_surface_z", over.surface_z, "--surface-z", "m", r.notes);
   r.paste_density = fluid_property(h5, file, "fluid_density", over.paste_density, "--paste-density", "kg/m3", r.notes);
   r.solids_fraction =
@@ -197,6 +208,29 @@ ResultSnapshot read_result(const fs::path& path, const ResultOverrides& over) {
   if (!(r.solids_fraction.value > 0.0 && r.solids_fraction.value <= 1.0))
     throw InputError(file, 0, r.solids_fraction.source,
                      fmt::format("solids fraction must be in (0, 1] (e.g. 0.75), got {}", r.solids_fraction.value));
+}
+
+}  // namespace
+
+ResultSnapshot read_result(const fs::path& path, const ResultOverrides& over) {
+  const std::string file = path.string();
+  check_is_file(path);
+  H5Reader h5(path);
+  check_not_checkpoint(h5, file);
+  ResultSnapshot r;
+  r.path = file;
+  r.seed = h5.has_attribute("/", "seed") ? h5.attribute_int("/", "seed") : -1;
+  r.scene_hash = h5.has_attribute("/", "scene_hash") ? h5.attribute_string("/", "scene_hash") : "";
+  r.ensemble_key = h5.has_attribute("/", "scene_text") ? seedless_scene_key(h5.attribute_string("/", "scene_text"))
+                                                       : r.scene_hash;
+  r.snapshot = snapshot_index(h5, file, over.snapshot);
+  const std::string g = fmt::format("/snapshots/{:06d}", r.snapshot);
+  r.time_s = h5.has_attribute(g, "time_s") ? h5.attribute_double(g, "time_s") : std::nan("");
+  const std::vector<std::int64_t> mat = read_particles(h5, file, g, r);
+  const std::vector<double> rho = material_densities(h5, file, over, r);
+  particle_densities(file, g, mat, rho, over, r);
+  read_escaped(h5, file, r);
+  read_paste(h5, file, over, r);
   return r;
 }
 

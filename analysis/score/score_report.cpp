@@ -150,14 +150,11 @@ std::string score_csv(const Score& s) {
   return o;
 }
 
-std::string score_toml(const Score& s, const std::string& software, const std::string& command,
-                       const std::string& created, const std::string& lab_h5) {
-  std::string o = "# pastemix score: model mixing maps vs the lab's cut-block grid (thesis ch. 3).\n"
-                  "# C in percent; errors in percentage points (pp) = model ensemble mean - lab.\n";
-  o += fmt::format("software = {}\ncommand = {}\ncreated = {}\nlab_h5 = {}\ncase = {}\n", toml_string(software),
-                   toml_string(command), toml_string(created), toml_string(lab_h5), s.case_id);
-  o += fmt::format("K_kg_m3 = {}\nK_source = {}\nrealizations = {}\n\n", toml_number(s.K), toml_string(s.K_source),
-                   s.realizations.size());
+namespace {
+
+// [headline]: did the rock go where the lab found it?
+std::string headline_toml(const Score& s) {
+  std::string o;
   o += "[headline]  # did the rock go where the lab found it? (analysis/score/score.h)\n";
   o += fmt::format("state = {}\nlayers_matched = {}\nlayer_tolerance_rule = {}\n",
                    toml_string(s.all_at_rest() ? "at rest" : "NOT AT REST (--allow-moving)"), s.layers_matched,
@@ -192,6 +189,12 @@ std::string score_toml(const Score& s, const std::string& software, const std::s
   }
   o += fmt::format("cone_model = {}\ncone_lab = {}\ncone_reproduced = {}\n\n", s.model_cone, s.lab_cone,
                    s.model_cone && s.lab_cone);
+  return o;
+}
+
+// [score]: the C errors over the blocks and the S classes.
+std::string score_section_toml(const Score& s) {
+  std::string o;
   o += "[score]\n";
   o += fmt::format("C_mean_abs_error_pp = {}\nC_max_abs_error_pp = {}\nblocks_compared = {}\n", toml_number(s.mae_pp),
                    toml_number(s.max_abs_error_pp), s.blocks_compared);
@@ -201,6 +204,12 @@ std::string score_toml(const Score& s, const std::string& software, const std::s
   o += fmt::format("centre_column_mean_abs_error_pp = {}\nS_classes_compared = {}\nS_classes_agree = {}\n"
                    "S_no_rock_below_g = {}  # model blocks with less rock count as 'no rock' (lab resolution)\n\n",
                    toml_number(s.centre_mae_pp), s.classes_compared, s.classes_agree, toml_number(1e3 * s.no_rock_below));
+  return o;
+}
+
+// [centre_column]: the two centre blocks of each layer.
+std::string centre_toml(const Score& s) {
+  std::string o;
   o += "[centre_column]  # mean of M_22k and M_32k, k = layer 1 (top) .. 3\n";
   std::vector<std::string> lab, model, sd, err;
   for (const auto& c : s.centre) {
@@ -211,12 +220,24 @@ std::string score_toml(const Score& s, const std::string& software, const std::s
   }
   o += fmt::format("lab_C_percent = [{}]\nmodel_C_percent = [{}]\nmodel_C_sd_percent = [{}]\nerror_pp = [{}]\n\n",
                    fmt::join(lab, ", "), fmt::join(model, ", "), fmt::join(sd, ", "), fmt::join(err, ", "));
+  return o;
+}
+
+// [unmixed_cone]: the two top centre blocks.
+std::string cone_toml(const Score& s) {
+  std::string o;
   o += "[unmixed_cone]  # reproduced when the model's C >= 90 % in both top centre blocks\n";
   o += fmt::format("model_C_M_221_percent = {}\nmodel_C_M_321_percent = {}\nlab_C_M_221_percent = {}\n"
                    "lab_C_M_321_percent = {}\nmodel_has_cone = {}\nlab_has_cone = {}\n"
                    "reproduced = {}  # both have it\n\n",
                    toml_number(100 * s.cone_221), toml_number(100 * s.cone_321), toml_number(100 * s.lab_cone_221),
                    toml_number(100 * s.lab_cone_321), s.model_cone, s.lab_cone, s.model_cone && s.lab_cone);
+  return o;
+}
+
+// [rock_mass_kg]: where the poured rock ended, ensemble mean and sd.
+std::string rock_toml(const Score& s) {
+  std::string o;
   o += "[rock_mass_kg]  # ensemble mean and sd; mixed = submerged, unmixed = above the final surface; escaped = left the simulation's domain (outflow)\n";
   o += fmt::format("above_surface_counted_in_layer_1 = {}\n", s.top_open);
   auto ms = [&](const char* name, const Summary& m) {
@@ -241,6 +262,12 @@ std::string score_toml(const Score& s, const std::string& software, const std::s
                      toml_number(s.lab_deep_share), toml_number(s.model_deep_share.mean),
                      toml_number(s.model_deep_share.sd));
   }
+  return o;
+}
+
+// One [[realization]] table per result file scored.
+std::string realizations_toml(const Score& s) {
+  std::string o;
   for (const auto& r : s.realizations) {
     o += "\n[[realization]]\n";
     o += fmt::format("file = {}\nseed = {}\nscene_hash = {}\nsnapshot = {}\ntime_s = {}\nC_mean_abs_error_pp = {}\n",
@@ -250,6 +277,25 @@ std::string score_toml(const Score& s, const std::string& software, const std::s
                      r.state.at_rest, toml_number(r.state.moving_mass), toml_number(r.state.in_flight_mass),
                      toml_number(r.state.max_speed));
   }
+  return o;
+}
+
+}  // namespace
+
+std::string score_toml(const Score& s, const std::string& software, const std::string& command,
+                       const std::string& created, const std::string& lab_h5) {
+  std::string o = "# pastemix score: model mixing maps vs the lab's cut-block grid (thesis ch. 3).\n"
+                  "# C in percent; errors in percentage points (pp) = model ensemble mean - lab.\n";
+  o += fmt::format("software = {}\ncommand = {}\ncreated = {}\nlab_h5 = {}\ncase = {}\n", toml_string(software),
+                   toml_string(command), toml_string(created), toml_string(lab_h5), s.case_id);
+  o += fmt::format("K_kg_m3 = {}\nK_source = {}\nrealizations = {}\n\n", toml_number(s.K), toml_string(s.K_source),
+                   s.realizations.size());
+  o += headline_toml(s);
+  o += score_section_toml(s);
+  o += centre_toml(s);
+  o += cone_toml(s);
+  o += rock_toml(s);
+  o += realizations_toml(s);
   return o;
 }
 
