@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "base/error.h"
+#include "base/range.h"
 #include "base/suggest.h"
 
 namespace pastemix {
@@ -190,7 +191,7 @@ const std::string& CsvTable::text(const Row& row, std::string_view column) const
   return row.cells[index_of(column)];
 }
 
-static const char* range_words(Range range) {
+const char* range_words(Range range) {
   switch (range) {
     case Range::positive: return "a positive number";
     case Range::non_negative: return "a non-negative number";
@@ -200,7 +201,7 @@ static const char* range_words(Range range) {
   return "a number";
 }
 
-static bool in_range(double v, Range range) {
+bool in_range(double v, Range range) {
   switch (range) {
     case Range::positive: return v > 0.0;
     case Range::non_negative: return v >= 0.0;

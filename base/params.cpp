@@ -11,6 +11,7 @@
 #include <toml++/toml.h>
 
 #include "base/error.h"
+#include "base/range.h"
 #include "base/suggest.h"
 
 namespace pastemix {
@@ -114,16 +115,6 @@ const toml::node* Params::get(std::string_view key) const {
   return n;
 }
 
-static const char* range_words(Range range) {
-  switch (range) {
-    case Range::positive: return "a positive number";
-    case Range::non_negative: return "a non-negative number";
-    case Range::fraction: return "a number in [0, 1]";
-    case Range::any: break;
-  }
-  return "a number";
-}
-
 std::optional<double> Params::optional_number(std::string_view key, Range range) const {
   const toml::node* n = get(key);
   if (!n) return std::nullopt;
@@ -131,11 +122,7 @@ std::optional<double> Params::optional_number(std::string_view key, Range range)
   if (auto f = n->as_floating_point()) v = f->get();
   else if (auto i = n->as_integer()) v = static_cast<double>(i->get());
   else fail(key, fmt::format("expected {}, got a value that is not a number", range_words(range)));
-  bool ok = std::isfinite(v);
-  if (range == Range::positive) ok = ok && v > 0.0;
-  if (range == Range::non_negative) ok = ok && v >= 0.0;
-  if (range == Range::fraction) ok = ok && v >= 0.0 && v <= 1.0;
-  if (!ok) fail(key, fmt::format("expected {}, got {}", range_words(range), v));
+  if (!(std::isfinite(v) && in_range(v, range))) fail(key, fmt::format("expected {}, got {}", range_words(range), v));
   return v;
 }
 
