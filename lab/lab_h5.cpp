@@ -30,13 +30,19 @@ void write_psd(H5Writer& h5, const std::string& g, const Psd& psd) {
   h5.write(g + "/mass_fraction", f);
 }
 
+// C, S, S_raw and flag of a case's grid (as read, or corrected) under group p.
+template <class Grids>
+void mixing_grids(H5Writer& h5, const std::string& p, const Grids& g) {
+  grid(h5, p + "/C", g.C);
+  grid(h5, p + "/S", g.S);
+  grid(h5, p + "/S_raw", g.S_raw);
+  grid(h5, p + "/flag", g.flag);
+}
+
 void write_block_cut(H5Writer& h5, const BlockCutResult& bc) {
   for (const auto& g : bc.cases) {
     const std::string p = fmt::format("/block_cut/case_{}", g.case_id);
-    grid(h5, p + "/C", g.C);
-    grid(h5, p + "/S", g.S);
-    grid(h5, p + "/S_raw", g.S_raw);
-    grid(h5, p + "/flag", g.flag);
+    mixing_grids(h5, p, g);
     grid(h5, p + "/M_wr", g.M_wr);
     grid(h5, p + "/M_paste_dried", g.M_paste);
     grid(h5, p + "/C_printed", g.C_printed);
@@ -49,10 +55,7 @@ void write_block_cut(H5Writer& h5, const BlockCutResult& bc) {
   }
   for (const auto& g : bc.corrected) {
     const std::string p = fmt::format("/block_cut/case_{}/corrected", g.case_id);
-    grid(h5, p + "/C", g.C);
-    grid(h5, p + "/S", g.S);
-    grid(h5, p + "/S_raw", g.S_raw);
-    grid(h5, p + "/flag", g.flag);
+    mixing_grids(h5, p, g);
     grid(h5, p + "/M_paste_dried", g.M_paste);
     grid(h5, p + "/applied", g.corrected);
   }

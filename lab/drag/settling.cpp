@@ -27,13 +27,18 @@ int positive_id(const CsvTable& t, const CsvTable::Row& row, std::string_view co
   return static_cast<int>(id);
 }
 
+// The file, with exactly these columns (any order): a missing or an unknown column is an input error.
+CsvTable read_exact(const std::filesystem::path& path, const std::vector<std::string>& cols) {
+  auto t = CsvTable::read(path);
+  t.require_columns(cols);
+  t.require_only_columns(cols);
+  return t;
+}
+
 }  // namespace
 
 std::vector<Suspension> read_suspensions(const std::filesystem::path& path) {
-  const auto t = CsvTable::read(path);
-  const std::vector<std::string> cols{"suspension", "density_kg_m3", "plastic_viscosity_Pa_s", "yield_stress_Pa"};
-  t.require_columns(cols);
-  t.require_only_columns(cols);
+  const auto t = read_exact(path, {"suspension", "density_kg_m3", "plastic_viscosity_Pa_s", "yield_stress_Pa"});
   std::vector<Suspension> out;
   for (const auto& row : t.rows()) {
     Suspension s;
@@ -54,11 +59,8 @@ SettlingData read_settling_data(const std::filesystem::path& spheres, const std:
   data.spheres_file = spheres.string();
   data.suspensions_file = suspensions.string();
   data.suspensions = read_suspensions(suspensions);
-  const auto t = CsvTable::read(spheres);
-  const std::vector<std::string> cols{"row_id",          "suspension",       "diameter_m", "sphere_density_kg_m3",
-                                      "terminal_velocity_m_s", "Re_prime_printed", "Cd_printed"};
-  t.require_columns(cols);
-  t.require_only_columns(cols);
+  const auto t = read_exact(spheres, {"row_id", "suspension", "diameter_m", "sphere_density_kg_m3",
+                                      "terminal_velocity_m_s", "Re_prime_printed", "Cd_printed"});
   std::map<int, int> seen;  // row_id -> line
   for (const auto& row : t.rows()) {
     SettlingSphere s;
@@ -96,21 +98,10 @@ SettlingData read_settling_dataset(const std::filesystem::path& dir) {
 
 std::vector<ThesisModelRow> read_thesis_model(const std::filesystem::path& path,
                                               const std::vector<Suspension>& suspensions) {
-  const auto t = CsvTable::read(path);
-  const std::vector<std::string> cols{"row_id",
-                                      "suspension",
-                                      "diameter_m",
-                                      "radius_m",
-                                      "sphere_density_kg_m3",
-                                      "terminal_velocity_measured_m_s",
-                                      "terminal_velocity_model_m_s",
-                                      "clay_density_kg_m3",
-                                      "clay_plastic_viscosity_Pa_s",
-                                      "clay_yield_stress_Pa",
-                                      "table_4_3_row_id",
-                                      "correction"};
-  t.require_columns(cols);
-  t.require_only_columns(cols);
+  const auto t = read_exact(path, {"row_id", "suspension", "diameter_m", "radius_m", "sphere_density_kg_m3",
+                                   "terminal_velocity_measured_m_s", "terminal_velocity_model_m_s",
+                                   "clay_density_kg_m3", "clay_plastic_viscosity_Pa_s", "clay_yield_stress_Pa",
+                                   "table_4_3_row_id", "correction"});
   std::vector<ThesisModelRow> out;
   for (const auto& row : t.rows()) {
     ThesisModelRow r;
