@@ -24,10 +24,11 @@ except ImportError as e:  # the caller turns this into a warning and writes ever
     print(f"plot_lab_grids: {e}", file=sys.stderr)
     sys.exit(3)
 
+from grid_labels import s_label  # noqa: E402 (after the exit-3 check)
+
 # Block edges in cm: i (4 blocks of 5 cm) along the 20 cm side = x, j (3 blocks of 5.5 cm) along 16.5 cm = y.
 X_EDGES = np.arange(5) * 5.0
 Y_EDGES = np.arange(4) * 5.5
-FLAG_CAPPED, FLAG_NO_ROCK, FLAG_NO_K = 1, 2, 3
 LAYERS = ["layer 1 (top, 0-3 cm)", "layer 2 (3-6 cm)", "layer 3 (bottom, 6-9 cm)"]
 NORM = Normalize(0, 100)
 CMAPS = ["YlOrBr", "Blues"]  # C row, S row
@@ -101,16 +102,6 @@ def case_title(f, n):
         if g is not None:
             parts.append(fmt.format(round(g.attrs["value"] * 100, 2)))
     return ", ".join(parts)
-
-
-def s_label(s, flag):
-    if flag == FLAG_NO_ROCK:
-        return "no rock"
-    if flag == FLAG_NO_K:
-        return "-"
-    if flag == FLAG_CAPPED:
-        return "100*"
-    return f"{s * 100:.1f}"
 
 
 def plot_case(fig, f, n, path):

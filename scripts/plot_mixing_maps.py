@@ -27,7 +27,8 @@ except ImportError as e:  # the caller turns this into a warning and writes ever
     print(f"plot_mixing_maps: {e}", file=sys.stderr)
     sys.exit(3)
 
-FLAG_CAPPED, FLAG_NO_ROCK, FLAG_NO_K = 1, 2, 3
+from grid_labels import s_label  # noqa: E402 (after the exit-3 check)
+
 
 
 def text_colour(cmap, norm, v):
@@ -57,16 +58,6 @@ def draw_panel(ax, xe, ye, values, labels, cmap, norm, title, ids):
     ax.set_ylabel("j (along y) \u2192", fontsize=8)
     ax.set_title(title, fontsize=9.5)
     return mesh
-
-
-def s_label(s, flag):
-    if flag == FLAG_NO_ROCK:
-        return "no rock"
-    if flag == FLAG_NO_K:
-        return "-"
-    if flag == FLAG_CAPPED:
-        return "100*"
-    return f"{s * 100:.1f}"
 
 
 def block_id(i, j, k):
