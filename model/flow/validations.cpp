@@ -6,20 +6,9 @@
 
 #include "base/csv.h"
 #include "base/error.h"
+#include "base/units.h"
 
 namespace pastemix::flow {
-
-Cost cost_of(const FlowSolver& s) {
-  Cost c;
-  const CostTotals& t = s.totals();
-  c.cells = s.grid().cell_count();
-  c.steps = t.steps;
-  c.seconds = t.seconds;
-  c.cell_steps_per_second = t.seconds > 0 ? static_cast<double>(c.cells) * static_cast<double>(c.steps) / t.seconds : 0.0;
-  c.pressure_iterations = t.steps ? static_cast<double>(t.pressure_iterations) / static_cast<double>(t.steps) : 0.0;
-  c.viscous_iterations = t.steps ? static_cast<double>(t.viscous_iterations) / static_cast<double>(t.steps) : 0.0;
-  return c;
-}
 
 GhiaReference read_ghia(const std::filesystem::path& csv, int re) {
   const CsvTable t = CsvTable::read(csv);
@@ -77,13 +66,6 @@ void centrelines(const FlowSolver& s, std::vector<double>& zu, std::vector<doubl
   w.push_back(0.0);
 }
 
-double relative_drift(double v, double v0) { return v0 > 0 ? std::abs(v - v0) / v0 : 0.0; }
-
-double relative_divergence(const StepStats& st) {
-  const auto& p = st.projection;
-  return p.divergence_before > 0 ? p.divergence_after / p.divergence_before : 0.0;
-}
-
 }  // namespace
 
 CavityResult cavity(int n, double re, const GhiaReference& ref, double max_time, double steady_tol) {
@@ -111,11 +93,7 @@ CavityResult cavity(int n, double re, const GhiaReference& ref, double max_time,
   r.steady_change = 1.0;
   while (t < max_time && r.steady_change > steady_tol) {
     t += 1.0;
-    while (s.time() < t * (1 - 1e-14)) {
-      double dt = std::min(s.next_time_step(), t - s.time());
-      s.step(dt);
-      r.max_divergence = std::max(r.max_divergence, relative_divergence(s.last()));
-    }
+    advance_to(s, t, r.max_divergence);
     centrelines(s, zu, u, xw, w);
     if (!u_prev.empty()) {
       r.steady_change = 0.0;
@@ -220,10 +198,9 @@ double release_pressure(double x, double z) {
   // p = rho g (H - z) + sum_n A_n cosh(k_n x) cos(k_n z), k_n = (2n + 1) pi / (2H), A_n from p = 0 at x = a;
   // cosh(k x) / cosh(k a) written with exponentials (no overflow for the high terms).
   const double a = kDamBreakWidth, H = 2.0 * a, rho_g = 1000.0 * kDamBreakGravity;
-  const double kPi = 3.14159265358979323846;
   double q = 0.0;
   for (int n = 0; n < 4000; ++n) {
-    const double k = (2 * n + 1) * kPi / (2.0 * H);
+    const double k = (2 * n + 1) * units::pi / (2.0 * H);
     const double ratio = std::exp(k * (x - a)) * (1.0 + std::exp(-2.0 * k * x)) / (1.0 + std::exp(-2.0 * k * a));
     q += ratio / (k * k) * std::cos(k * z);
   }

@@ -8,17 +8,9 @@
 #include <vector>
 
 #include "model/flow/solver.h"
+#include "model/flow/validation_run.h"  // Cost, cost_of
 
 namespace pastemix::flow {
-
-struct Cost {
-  long cells = 0, steps = 0;
-  double seconds = 0.0;                  // wall s in the solver's steps
-  double cell_steps_per_second = 0.0;    // cells x steps / s
-  double pressure_iterations = 0.0;      // mean CG iterations per pressure solve
-  double viscous_iterations = 0.0;       // mean CG iterations per viscous solve
-};
-Cost cost_of(const FlowSolver& s);
 
 struct Profile {
   std::vector<double> position, velocity;  // reference points (cavity sides, lid speeds)

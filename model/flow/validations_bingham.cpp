@@ -5,21 +5,16 @@
 #include <cmath>
 #include <memory>
 
+#include "base/units.h"
 #include "model/flow/bingham.h"
+#include "model/flow/validation_run.h"
 
 namespace pastemix::flow {
 
 namespace {
 
 constexpr double kG = 9.81;  // m/s2
-constexpr double kPi = 3.14159265358979323846;
-
-double drift(double v, double v0) { return v0 > 0 ? std::abs(v - v0) / v0 : 0.0; }
-
-double relative_divergence(const StepStats& st) {
-  const auto& p = st.projection;
-  return p.divergence_before > 0 ? p.divergence_after / p.divergence_before : 0.0;
-}
+constexpr double kPi = units::pi;
 
 // A 1-D column of cells along z, periodic along x and y (one cell each, width `width` so that the CFL bound
 // along the flow never binds), walls at both z ends.
@@ -113,7 +108,7 @@ PoiseuilleResult bingham_poiseuille(int cells, double m, const BinghamPaste& p) 
   r.plug_width_exact = 2.0 * p.tau_y / G;
   r.plug_width = yield_surface(r.u, h, *law, true) - yield_surface(r.u, h, *law, false);
   r.plug_speed = *std::max_element(r.u.begin(), r.u.end());
-  r.volume_drift = drift(s.paste_volume(), v0);
+  r.volume_drift = relative_drift(s.paste_volume(), v0);
   r.cost = cost_of(s);
   return r;
 }
@@ -157,7 +152,7 @@ InclineResult bingham_incline(double depth_over_hc, int cells, double m, double 
   }
   r.time = s.time();
   r.surface_speed = surface();
-  r.volume_drift = drift(s.paste_volume(), v0);
+  r.volume_drift = relative_drift(s.paste_volume(), v0);
   r.cost = cost_of(s);
   return r;
 }
@@ -216,7 +211,7 @@ CliffResult bingham_cliff(double height_over_scale, int cells, double m, double 
   r.time = s.time();
   r.front_advance = floor_front(s) - front0;
   r.top_drop = top0 - top_height(s);
-  r.volume_drift = drift(s.paste_volume(), v0);
+  r.volume_drift = relative_drift(s.paste_volume(), v0);
   r.cost = cost_of(s);
   return r;
 }
@@ -316,7 +311,7 @@ SlumpResult bingham_slump(double cell, double m, double tau_y, double rho, doubl
   const SlumpShape shape = slump_shape(s);
   r.slump = shape.slump;
   r.spread = shape.spread;
-  r.volume_drift = drift(s.paste_volume(), v0);
+  r.volume_drift = relative_drift(s.paste_volume(), v0);
   r.cost = cost_of(s);
   return r;
 }
