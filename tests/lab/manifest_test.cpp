@@ -5,6 +5,7 @@
 
 #include "base/error.h"
 #include "lab/ingest/slump.h"
+#include "tests/input_error.h"
 
 using namespace pastemix;
 using namespace pastemix::lab;
@@ -12,13 +13,12 @@ using namespace pastemix::lab;
 namespace {
 std::string error_of(const std::string& units_toml) {
   const Params p = Params::parse("[units]\n" + units_toml, "m.toml");
-  try {
-    ColumnUnits::from_manifest(slump_columns(), p.table("units"));
-    p.finish();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "no error";
+  return pastemix::test::input_error_of(
+      [&] {
+        ColumnUnits::from_manifest(slump_columns(), p.table("units"));
+        p.finish();
+      },
+      "no error");
 }
 const std::string kGood =
     "H_mm = \"mm\"\nD_mm = \"mm\"\npaste_density_kg_m3 = \"kg/m3\"\nslump_mm = \"cm\"\nyield_stress_Pa = \"Pa\"\n"

@@ -6,6 +6,7 @@
 
 #include "base/error.h"
 #include "model/scene.h"
+#include "tests/input_error.h"
 
 namespace pastemix::model::test {
 
@@ -36,12 +37,7 @@ inline const std::string kSphere = "[[particle]]\nmaterial = \"rock\"\nradius = 
 
 // The InputError message of loading `text` as the scene file `path` ("" if it loads).
 inline std::string error_of(const std::string& text, const std::string& path = "bad.toml") {
-  try {
-    parse_scene(text, path);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
+  return pastemix::test::input_error_of([&] { parse_scene(text, path); });
 }
 
 // A [[material]] block.
@@ -53,6 +49,34 @@ inline std::string material(const std::string& name, double density, double E, d
 inline std::string interaction(const std::string& pair, double e, double mu, double mu_r = 0.0) {
   return "[[interaction]]\nmaterials = \"" + pair + "\"\nrestitution = " + std::to_string(e) +
          "\nfriction = " + std::to_string(mu) + "\nrolling_friction = " + std::to_string(mu_r) + "\n";
+}
+
+// The ch. 5-7 rock (E reduced to 4.68e7 Pa) against itself with constant-torque rolling (mu_r = 0.15): the
+// [contact], [[material]] and [[interaction]] tables of the small engine scenes.
+inline const std::string kRockRolling = R"([contact]
+law = "hertz_mindlin"
+rolling = "constant_torque"
+[[material]]
+name = "rock"
+density = 2760
+youngs_modulus = 4.68e7
+poisson_ratio = 0.19
+[[interaction]]
+materials = "rock/rock"
+restitution = 0.79
+friction = 0.466
+rolling_friction = 0.15
+)";
+
+// A rock box wall named "box" from `min` to `max` (TOML arrays, m).
+inline std::string box_wall(const std::string& min, const std::string& max) {
+  return "[[wall]]\nname = \"box\"\ntype = \"box\"\nmaterial = \"rock\"\nmin = " + min + "\nmax = " + max + "\n";
+}
+
+// A [[factory]] of `mass` kg of rock, 2.5-5 mm spheres, filled into the box from `min` to `max` (TOML arrays, m).
+inline std::string rock_factory(const std::string& mass, const std::string& min, const std::string& max) {
+  return "[[factory]]\nmaterial = \"rock\"\nmass = " + mass + "\nshape = \"box\"\nmin = " + min + "\nmax = " + max +
+         "\n[[factory.psd]]\nd_min = 2.5e-3\nd_max = 5.0e-3\nfraction = 1.0\n";
 }
 
 // Runs `steps` (any callable) and returns the RuntimeFailure's message it stopped with ("" if none).

@@ -11,6 +11,7 @@
 #include "base/error.h"
 #include "tests/analysis/result_fixture.h"
 #include "base/units.h"
+#include "tests/input_error.h"
 
 using namespace pastemix::analysis;
 using pastemix::InputError;
@@ -18,18 +19,7 @@ using pastemix::test::ResultSpec;
 using pastemix::test::ScratchDir;
 using pastemix::test::write_result;
 
-namespace {
-// The message of the InputError `f` throws ("" if none).
-template <class F>
-std::string error_of(F f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
-}  // namespace
+using pastemix::test::input_error_of;
 
 TEST_CASE("result file: reads the last snapshot, material densities and the paste attributes") {
   ScratchDir d("result_read");
@@ -80,32 +70,32 @@ TEST_CASE("result file: every missing or bad input names the file and the field"
   const auto path = (d / "r.h5").string();
   s.surface = false;
   write_result(d / "r.h5", s);
-  std::string e = error_of([&] { read_result(path, {}); });
+  std::string e = input_error_of([&] { read_result(path, {}); });
   CHECK(e.find(path) != std::string::npos);
   CHECK(e.find("fluid_surface_z") != std::string::npos);
   CHECK(e.find("--surface-z") != std::string::npos);
   s.surface = true;
   s.material_density = false;
   write_result(d / "r.h5", s);
-  e = error_of([&] { read_result(path, {}); });
+  e = input_error_of([&] { read_result(path, {}); });
   CHECK(e.find("/material_density") != std::string::npos);
   CHECK(e.find("--rock-density") != std::string::npos);
   s.material_density = true;
   s.final[0].material = 3;
   write_result(d / "r.h5", s);
-  CHECK(error_of([&] { read_result(path, {}); }).find("material 3") != std::string::npos);
+  CHECK(input_error_of([&] { read_result(path, {}); }).find("material 3") != std::string::npos);
   s.final[0].material = 0;
   s.solids = 75;  // a percentage where a fraction belongs
   write_result(d / "r.h5", s);
-  CHECK(error_of([&] { read_result(path, {}); }).find("fluid_solids_fraction") != std::string::npos);
+  CHECK(input_error_of([&] { read_result(path, {}); }).find("fluid_solids_fraction") != std::string::npos);
   std::ofstream(d / "text.h5") << "not hdf5\n";
-  CHECK(error_of([&] { read_result(d / "text.h5", {}); }).find("HDF5") != std::string::npos);
-  CHECK(error_of([&] { read_result(d / "none.h5", {}); }).find("no such file") != std::string::npos);
+  CHECK(input_error_of([&] { read_result(d / "text.h5", {}); }).find("HDF5") != std::string::npos);
+  CHECK(input_error_of([&] { read_result(d / "none.h5", {}); }).find("no such file") != std::string::npos);
   ResultOverrides o;
   o.snapshot = 5;
   s.solids = 0.75;
   write_result(d / "r.h5", s);
-  CHECK(error_of([&] { read_result(path, o); }).find("snapshot 5") != std::string::npos);
+  CHECK(input_error_of([&] { read_result(path, o); }).find("snapshot 5") != std::string::npos);
 }
 
 TEST_CASE("result file: escaped rock up to the snapshot is poured mass, the maps' balances hold with it to 1e-9") {
@@ -159,5 +149,5 @@ TEST_CASE("result file: escaped rock up to the snapshot is poured mass, the maps
   ResultSpec bad = s;
   bad.escaped = {{0.2, -0.01}};
   write_result(d / "bad.h5", bad);
-  CHECK(error_of([&] { read_result(d / "bad.h5", {}); }).find("/escaped/mass") != std::string::npos);
+  CHECK(input_error_of([&] { read_result(d / "bad.h5", {}); }).find("/escaped/mass") != std::string::npos);
 }

@@ -10,6 +10,7 @@
 #include "base/error.h"
 #include "lab/ingest/block_id.h"
 #include "tests/run_command.h"
+#include "tests/input_error.h"
 
 using namespace pastemix;
 using namespace pastemix::lab;
@@ -34,12 +35,9 @@ std::string with_line(int line, const std::string& text) {
   return out;
 }
 std::string error_of(const std::string& csv) {
-  try {
-    ingest_block_cut(CsvTable::parse(csv, "b.csv"), ColumnUnits::defaults(block_cut_columns()), kThesisK);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "no error";
+  return pastemix::test::input_error_of(
+      [&] { ingest_block_cut(CsvTable::parse(csv, "b.csv"), ColumnUnits::defaults(block_cut_columns()), kThesisK); },
+      "no error");
 }
 }  // namespace
 

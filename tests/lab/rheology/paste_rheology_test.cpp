@@ -15,6 +15,7 @@
 #include <fmt/format.h>
 
 #include "base/error.h"
+#include "tests/input_error.h"
 
 using namespace pastemix;
 using namespace pastemix::lab::rheology;
@@ -35,14 +36,7 @@ Model model(Family f, double shape, double sd = kNaN) {
   return m;
 }
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+using pastemix::test::input_error_of;
 
 }  // namespace
 
@@ -124,21 +118,21 @@ TEST_CASE("rheology: the shape parameter's sd propagates to tau_y and eta_B (del
 
 TEST_CASE("rheology: a shape parameter outside its prior range is an error naming it and the range") {
   const Anchor a = thesis_anchor();
-  const std::string e = error_of([&] { check_shape(Family::exponential, a, 0.9, "record.toml"); });
+  const std::string e = input_error_of([&] { check_shape(Family::exponential, a, 0.9, "record.toml"); });
   CHECK(e.find("record.toml") != std::string::npos);
   CHECK(e.find("exponential.b") != std::string::npos);
   CHECK(e.find("outside its prior range [0.277259, 0.601631]") != std::string::npos);
-  const std::string p = error_of([&] { check_shape(Family::packing, a, 0.70, "x"); });
+  const std::string p = input_error_of([&] { check_shape(Family::packing, a, 0.70, "x"); });
   CHECK(p.find("packing.phi_m") != std::string::npos);
-  CHECK(error_of([&] { check_shape(Family::exponential, a, std::nan(""), "x"); }).find("finite") != std::string::npos);
-  CHECK(error_of([&] { check_shape(Family::exponential, a, 0.4, "x"); }).empty());
+  CHECK(input_error_of([&] { check_shape(Family::exponential, a, std::nan(""), "x"); }).find("finite") != std::string::npos);
+  CHECK(input_error_of([&] { check_shape(Family::exponential, a, 0.4, "x"); }).empty());
   // The store refuses it too (nothing half-written: it throws before returning any parameter).
   ShapeSource s;
-  CHECK(error_of([&] { store_parameters(model(Family::exponential, 0.2), s, {0.725}, {"2"}, "slump"); })
+  CHECK(input_error_of([&] { store_parameters(model(Family::exponential, 0.2), s, {0.725}, {"2"}, "slump"); })
             .find("exponential.b = 0.2") != std::string::npos);
   Anchor bad = a;
   bad.plastic_viscosity = -1;
-  CHECK(error_of([&] { check_anchor(bad, "m.toml"); }).find("plastic_viscosity") != std::string::npos);
+  CHECK(input_error_of([&] { check_anchor(bad, "m.toml"); }).find("plastic_viscosity") != std::string::npos);
 }
 
 TEST_CASE("rheology: the store has the model and, per solids content, value, sd, provenance and the label") {
@@ -189,10 +183,10 @@ TEST_CASE("rheology: the calibration record round-trips and a malformed one name
   CHECK(back.case_id == 2);
   CHECK(back.detail == c.detail);
   std::ofstream(path) << "[rheology_calibration]\nfamily = \"exponential\"\nshape = 0.4\nsd = 0.01\ncase = 2\nsahpe = 1\n";
-  const std::string e = error_of([&] { read_calibration(path); });
+  const std::string e = input_error_of([&] { read_calibration(path); });
   CHECK(e.find("cal.toml:6") != std::string::npos);
   CHECK(e.find("sahpe") != std::string::npos);
-  CHECK(error_of([&] { read_calibration((dir / "none.toml").string()); }).find("no such calibration record") !=
+  CHECK(input_error_of([&] { read_calibration((dir / "none.toml").string()); }).find("no such calibration record") !=
         std::string::npos);
   std::filesystem::remove_all(dir);
 }

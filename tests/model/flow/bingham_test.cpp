@@ -16,6 +16,7 @@
 #include "base/error.h"
 #include "model/flow/flow_config.h"
 #include "model/flow/solver.h"
+#include "tests/input_error.h"
 
 using namespace pastemix;
 using namespace pastemix::flow;
@@ -62,21 +63,14 @@ regularisation = 500.0
 )";
 
 std::string error_of(const std::string& text, const std::string& path = "case.toml") {
-  try {
+  return pastemix::test::input_error_of([&] {
     const Params file = Params::parse(text, path);
     read_flow_case(file.table("flow"));
     file.finish();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
+  });
 }
 
-std::string replace(std::string s, const std::string& from, const std::string& to) {
-  const auto at = s.find(from);
-  REQUIRE(at != std::string::npos);
-  return s.replace(at, from.size(), to);
-}
+using pastemix::test::replace;
 
 struct Dir {
   fs::path path = fs::temp_directory_path() / fmt::format("pastemix_flow_bingham_{}", static_cast<long>(::getpid()));

@@ -8,6 +8,7 @@
 
 #include "base/error.h"
 #include "tests/run_command.h"
+#include "tests/input_error.h"
 
 using namespace pastemix;
 using namespace pastemix::flow;
@@ -37,19 +38,10 @@ FlowCase parse(const std::string& text) {
 }
 
 std::string error_of(const std::string& text) {
-  try {
-    parse(text);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
+  return pastemix::test::input_error_of([&] { parse(text); });
 }
 
-std::string replace(std::string s, const std::string& from, const std::string& to) {
-  const auto at = s.find(from);
-  REQUIRE(at != std::string::npos);
-  return s.replace(at, from.size(), to);
-}
+using pastemix::test::replace;
 }  // namespace
 
 TEST_CASE("flow config: a good case gives the grid, the boundaries and the paste") {

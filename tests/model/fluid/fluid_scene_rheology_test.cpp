@@ -14,6 +14,7 @@
 #include "model/fluid/fluid_scene.h"
 #include "model/scene.h"
 #include "tests/run_command.h"
+#include "tests/input_error.h"
 
 using namespace pastemix;
 using namespace pastemix::model;
@@ -73,12 +74,7 @@ Scene load_in(const Dir& d, const std::string& text) {
 }
 
 std::string error_of(const Dir& d, const std::string& text) {
-  try {
-    load_in(d, text);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
+  return pastemix::test::input_error_of([&] { load_in(d, text); });
 }
 
 const std::string kFrom = "rheology_from = \"../../../../out/lab/parameters.toml\"";
