@@ -8,54 +8,21 @@
 #include <string>
 
 #include "base/h5.h"
+#include "tests/model/scene_text.h"
+#include "tests/fresh_dir.h"
 #include "tests/run_command.h"
 
 namespace pastemix {
 namespace {
 
 // Tiny scene: 3 g of 2.5-5 mm rock filled into a small box, 20 steps.
-constexpr const char* kScene = R"(seed = 1
-time_step = 5e-6
-end_time = 1e-4
-[domain]
-min = [-0.01, -0.01, -0.01]
-max = [0.06, 0.06, 0.1]
-[contact]
-law = "hertz_mindlin"
-rolling = "constant_torque"
-[[material]]
-name = "rock"
-density = 2760
-youngs_modulus = 4.68e7
-poisson_ratio = 0.19
-[[interaction]]
-materials = "rock/rock"
-restitution = 0.79
-friction = 0.466
-rolling_friction = 0.15
-[[wall]]
-name = "box"
-type = "box"
-material = "rock"
-min = [0, 0, 0]
-max = [0.05, 0.05, 0.09]
-[[factory]]
-material = "rock"
-mass = 0.003
-shape = "box"
-min = [0.002, 0.002, 0.002]
-max = [0.048, 0.048, 0.05]
-[[factory.psd]]
-d_min = 2.5e-3
-d_max = 5e-3
-fraction = 1.0
-)";
+const std::string kScene = "seed = 1\ntime_step = 5e-6\nend_time = 1e-4\n[domain]\nmin = [-0.01, -0.01, -0.01]\n"
+                           "max = [0.06, 0.06, 0.1]\n" + model::test::kRockRolling +
+                           model::test::box_wall("[0, 0, 0]", "[0.05, 0.05, 0.09]") +
+                           model::test::rock_factory("0.003", "[0.002, 0.002, 0.002]", "[0.048, 0.048, 0.05]");
 
 std::filesystem::path fresh_dir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / name;
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
+  return test::fresh_dir(std::filesystem::temp_directory_path() / name);
 }
 
 }  // namespace

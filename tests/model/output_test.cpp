@@ -11,14 +11,13 @@
 
 #include "base/h5.h"
 #include "model/scene.h"
+#include "tests/fresh_dir.h"
 #include "tests/run_command.h"
 
 using namespace pastemix;
 
 TEST_CASE("output: pastemix run writes HDF5 + XDMF that agree, with scene, seed and profile") {
-  const std::string dir = "model_output_test_out";
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
+  const std::string dir = pastemix::test::fresh_dir("model_output_test_out").string();
   // The demo pour, shortened: 0.02 s, snapshots every 0.01 s.
   std::ifstream in(pastemix::test::source_path("datasets/scenes/pour_box.toml"));
   std::stringstream buf;
@@ -83,9 +82,7 @@ TEST_CASE("output: pastemix run writes HDF5 + XDMF that agree, with scene, seed 
 }
 
 TEST_CASE("output: a run that fails (particle leaves the domain) exits 3 naming the particle, and writes nothing") {
-  const std::string dir = "model_output_fail_out";
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
+  const std::string dir = pastemix::test::fresh_dir("model_output_fail_out").string();
   {
     std::ofstream f(dir + "/fall.toml");
     f << "time_step = 1e-4\nend_time = 1.0\n[domain]\nmin = [-1, -1, -0.1]\nmax = [1, 1, 1]\n"

@@ -35,6 +35,19 @@ std::vector<double> ball(const Grid& g, std::array<double, 3> c, double r) {
       }
   return a;
 }
+// Paste 1000 times as dense as the air (kg/m3).
+Phases thousand_to_one() {
+  Phases ph;
+  ph.rho_paste = 1000.0;
+  ph.rho_air = 1.0;
+  return ph;
+}
+// The same velocity (m/s) on every face.
+Faces uniform_faces(const Grid& g, const std::array<double, 3>& vel) {
+  Faces u;
+  for (int c = 0; c < 3; ++c) u[c].assign(g.face_count(c), vel[c]);
+  return u;
+}
 double sum(const std::vector<double>& v) {
   long double s = 0;
   for (double x : v) s += x;
@@ -44,15 +57,12 @@ double sum(const std::vector<double>& v) {
 
 TEST_CASE("advection: a ball carried once across a periodic box keeps its volume to round-off and stays bounded") {
   const Grid g = periodic_box(16);
-  Phases ph;
-  ph.rho_paste = 1000.0;
-  ph.rho_air = 1.0;
+  const Phases ph = thousand_to_one();
   std::vector<double> alpha = ball(g, {0.5, 0.5, 0.5}, 0.25);
   const std::vector<double> alpha0 = alpha;
   const double v0 = sum(alpha);
   const std::array<double, 3> vel{1.0, 0.5, 0.25};
-  Faces u;
-  for (int c = 0; c < 3; ++c) u[c].assign(g.face_count(c), vel[c]);
+  const Faces u = uniform_faces(g, vel);
   // 1 s at CFL 0.4 along x: the ball returns to its start in x, y and z (periods 1, 2, 4 s: x only exactly).
   const double dt = 0.4 / 16;
   double amin = 1, amax = 0;
@@ -69,13 +79,10 @@ TEST_CASE("advection: a ball carried once across a periodic box keeps its volume
 
 TEST_CASE("advection: a uniform velocity across a 1000:1 density jump stays uniform (consistent momentum)") {
   const Grid g = periodic_box(12);
-  Phases ph;
-  ph.rho_paste = 1000.0;
-  ph.rho_air = 1.0;
+  const Phases ph = thousand_to_one();
   std::vector<double> alpha = ball(g, {0.4, 0.5, 0.6}, 0.3);
   const std::array<double, 3> vel{0.7, -0.3, 0.2};
-  Faces u;
-  for (int c = 0; c < 3; ++c) u[c].assign(g.face_count(c), vel[c]);
+  Faces u = uniform_faces(g, vel);
   for (int s = 0; s < 30; ++s) {
     advect(g, ph, 0.02, s, alpha, u);
     // The advecting velocity of the next step is the advected one, as in the solver.

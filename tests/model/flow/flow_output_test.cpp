@@ -11,14 +11,13 @@
 #include <sstream>
 
 #include "base/h5.h"
+#include "tests/fresh_dir.h"
 #include "tests/run_command.h"
 
 using namespace pastemix;
 
 TEST_CASE("flow output: flow run writes HDF5 + XDMF that agree") {
-  const std::string dir = "model_flow_output_test_out";
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
+  const std::string dir = pastemix::test::fresh_dir("model_flow_output_test_out").string();
   {
     std::ofstream f(dir + "/small.toml");
     f << "[flow]\nname = \"small\"\nbox = [0.04, 0.03, 0.05]\ncell = 0.01\nend_time = 0.04\noutput_interval = 0.02\n"

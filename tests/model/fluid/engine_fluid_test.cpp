@@ -21,6 +21,7 @@
 #include "model/parallel.h"
 #include "model/run.h"
 #include "model/scene.h"
+#include "tests/model/scene_text.h"
 #include "tests/run_command.h"
 
 using namespace pastemix;
@@ -44,28 +45,9 @@ end_time = 1.0
 [domain]
 min = [-0.02, -0.02, -0.02]
 max = [0.12, 0.12, 0.4]
-[contact]
-law = "hertz_mindlin"
-rolling = "constant_torque"
 [neighbor]
 skin = 1.25e-3
-[[material]]
-name = "rock"
-density = 2760
-youngs_modulus = 4.68e7
-poisson_ratio = 0.19
-[[interaction]]
-materials = "rock/rock"
-restitution = 0.79
-friction = 0.466
-rolling_friction = 0.15
-[[wall]]
-name = "box"
-type = "box"
-material = "rock"
-min = [0.0, 0.0, 0.0]
-max = [0.1, 0.1, 0.35]
-[[fluid]]
+)" + model::test::kRockRolling + model::test::box_wall("[0.0, 0.0, 0.0]", "[0.1, 0.1, 0.35]") + R"([[fluid]]
 x = [0.0, 0.05]
 y = [0.0, 0.1]
 bottom = 0.0
@@ -75,17 +57,7 @@ rheology = "bingham"
 yield_stress = 10
 plastic_viscosity = 0.7
 curve = "published_4_19"
-[[factory]]
-material = "rock"
-mass = 0.02
-shape = "box"
-min = [0.005, 0.005, 0.05]
-max = [0.095, 0.095, 0.12]
-[[factory.psd]]
-d_min = 2.5e-3
-d_max = 5.0e-3
-fraction = 1.0
-)";
+)" + model::test::rock_factory("0.02", "[0.005, 0.005, 0.05]", "[0.095, 0.095, 0.12]");
 
 // The scene run on 2 threads (every loop parallel), in batches of 400 steps, for `steps` steps.
 World two_threads_in_batches(Scene scene, long steps) {
