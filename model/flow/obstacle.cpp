@@ -18,6 +18,17 @@ double LiftedMould::lower_edge(double t) const {
   return speed * std::max(0.0, t);
 }
 
+double LiftedMould::opening_time(const Grid& g, int k) const {
+  if (instant()) return 0.0;
+  return (k + 0.5) * g.h[2] / speed;  // the plate is the box's floor
+}
+
+int LiftedMould::open_layers(const Grid& g, double t) const {
+  int k = 0;
+  while (k < g.n[2] && t + 1e-12 >= opening_time(g, k)) ++k;
+  return k;
+}
+
 bool LiftedMould::inside(const Grid& g, int i, int j) const {
   const double x = g.origin[0] + (i + 0.5) * g.h[0] - axis_x, y = g.origin[1] + (j + 0.5) * g.h[1] - axis_y;
   return x * x + y * y < radius * radius;
@@ -25,15 +36,15 @@ bool LiftedMould::inside(const Grid& g, int i, int j) const {
 
 FaceMask LiftedMould::faces(const Grid& g, double t) const {
   FaceMask m;
-  const double lo = lower_edge(t), hi = lo + height;
-  if (!(lo < g.origin[2] + g.n[2] * g.h[2])) return m;  // gone (or never there): no wall
+  const int open = open_layers(g, t);
+  if (open == g.n[2]) return m;                 // gone (or never there): no wall
+  const double top = lower_edge(t) + height;    // m above the plate
   // The shell is vertical: it blocks x- and y-faces only, those between an inside and an outside cell.
   for (int c = 0; c < 2; ++c) {
     m[c].assign(g.face_count(c), 0);
     const auto fd = g.face_dims(c);
     for (int k = 0; k < fd[2]; ++k) {
-      const double z = g.origin[2] + (k + 0.5) * g.h[2];
-      if (z < lo || z > hi) continue;
+      if (k < open || (k + 0.5) * g.h[2] > top) continue;
       for (int j = 0; j < fd[1]; ++j)
         for (int i = 0; i < fd[0]; ++i) {
           std::array<int, 3> a{i, j, k}, b{i, j, k};

@@ -31,7 +31,8 @@ long blocked_count(const FaceMask& m);
 // z = speed t from the plate (z = origin) and `height` tall: the slump test's mould, lifted at a constant
 // speed from t = 0 (m/s; infinity: gone at t = 0, the instantaneous release). A face of the staircase is
 // blocked while its centre's z is inside [lower edge, lower edge + height]: it opens when the edge passes
-// its centre (a layer of faces at a time, every h_z / speed).
+// its centre (a layer of faces at a time, every h_z / speed), at opening_time(k) exactly, so that a run can
+// land its steps on those times.
 struct LiftedMould {
   double axis_x = 0.0, axis_y = 0.0;  // m
   double radius = 0.076;              // m
@@ -40,6 +41,11 @@ struct LiftedMould {
 
   bool instant() const { return !(speed < std::numeric_limits<double>::infinity()); }
   double lower_edge(double t) const;  // m above the plate; infinity for the instantaneous release (t >= 0)
+  // When the lower edge passes the centre of layer k's faces (s; 0 for the instantaneous release).
+  double opening_time(const Grid& g, int k) const;
+  // The layers open at t: those whose opening time is at most t + 1e-12 s (a step that lands on an opening time
+  // may end an ulp short of it).
+  int open_layers(const Grid& g, double t) const;
   // Whether cell (i, j)'s centre is inside the shell's radius.
   bool inside(const Grid& g, int i, int j) const;
   // The faces the shell blocks at time t (empty once its lower edge has left the box).

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 
@@ -291,12 +292,15 @@ class MouldLift {
   MouldLift(const LiftedMould& mould, const Grid& g) : mould_(mould), g_(g) {}
   void update(FlowSolver& s) {
     if (mould_.instant()) return;
-    const double edge = mould_.lower_edge(s.time());
-    int open = 0;  // layers whose faces the lower edge has passed (their centre below it)
-    while (open < g_.n[2] && g_.origin[2] + (open + 0.5) * g_.h[2] < edge) ++open;
+    const int open = mould_.open_layers(g_, s.time());  // layers the lower edge has passed
     if (open == open_) return;
     open_ = open;
     s.set_blocked_faces(mould_.faces(g_, s.time()));
+  }
+  // The next time a layer opens (s), infinity when none is left: the run lands a step on it.
+  double next_opening() const {
+    if (mould_.instant() || open_ >= g_.n[2]) return std::numeric_limits<double>::infinity();
+    return mould_.opening_time(g_, open_);
   }
 
  private:
@@ -355,7 +359,12 @@ SlumpResult bingham_slump(double cell, double m, double tau_y, double rho, doubl
   double rest_since = -1.0;  // s, the start of the current spell at rest
   bool released = mould.instant();
   while (s.time() < max_time) {
-    s.step(s.next_time_step());
+    // Steps land on the layers' opening times (no sliver left before one), so the lift keeps its schedule.
+    double dt = s.next_time_step();
+    const double t_open = lift.next_opening(), left = t_open - s.time();
+    if (s.time() + dt >= t_open) dt = left;
+    else if (s.time() + 1.5 * dt > t_open) dt = 0.5 * left;
+    s.step(dt);
     lift.update(s);  // the mask for the next step, from its start time
     r.max_divergence = std::max(r.max_divergence, relative_divergence(s.last()));
     if (progress) progress(s);

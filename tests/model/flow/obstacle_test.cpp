@@ -75,6 +75,12 @@ TEST_CASE("obstacle: the mould's staircase is the ring between inside and outsid
   // t = 1.0 s: edge at 100 mm: layers with centres 110, 130, 150 mm.
   expect_layers(1.0, 5, 7);
   CHECK(m.lower_edge(1.0) == doctest::Approx(0.1));
+  // Layer k opens when the edge reaches its centre, (k + 1/2) h / V: 0.1 s for layer 0, 0.3 s for layer 1.
+  CHECK(m.opening_time(g, 0) == doctest::Approx(0.1));
+  CHECK(m.opening_time(g, 1) == doctest::Approx(0.3));
+  CHECK(m.open_layers(g, 0.0999) == 0);
+  CHECK(m.open_layers(g, 0.1 - 1e-13) == 1);  // a step landing an ulp short of the time still opens it
+  CHECK(m.open_layers(g, 0.3) == 2);
   // Once the edge has left the box (160 mm) there is no wall at all.
   CHECK(!any_blocked(m.faces(g, 1.61)));
   // The instantaneous release: never a wall.
