@@ -37,14 +37,13 @@ bool LiftedMould::inside(const Grid& g, int i, int j) const {
 FaceMask LiftedMould::faces(const Grid& g, double t) const {
   FaceMask m;
   const int open = open_layers(g, t);
-  if (open == g.n[2]) return m;                 // gone (or never there): no wall
-  const double top = lower_edge(t) + height;    // m above the plate
+  if (open == g.n[2]) return m;  // gone (or never there): no wall
   // The shell is vertical: it blocks x- and y-faces only, those between an inside and an outside cell.
   for (int c = 0; c < 2; ++c) {
     m[c].assign(g.face_count(c), 0);
     const auto fd = g.face_dims(c);
     for (int k = 0; k < fd[2]; ++k) {
-      if (k < open || (k + 0.5) * g.h[2] > top) continue;
+      if (k < open) continue;
       for (int j = 0; j < fd[1]; ++j)
         for (int i = 0; i < fd[0]; ++i) {
           std::array<int, 3> a{i, j, k}, b{i, j, k};

@@ -28,15 +28,17 @@ bool any_blocked(const FaceMask& m);
 long blocked_count(const FaceMask& m);
 
 // A thin cylindrical shell with a vertical axis through (axis_x, axis_y), radius `radius` (m), its lower edge at
-// z = speed t from the plate (z = origin) and `height` tall: the slump test's mould, lifted at a constant
-// speed from t = 0 (m/s; infinity: gone at t = 0, the instantaneous release). A face of the staircase is
-// blocked while its centre's z is inside [lower edge, lower edge + height]: it opens when the edge passes
-// its centre (a layer of faces at a time, every h_z / speed), at opening_time(k) exactly, so that a run can
-// land its steps on those times.
+// z = speed t from the plate (z = origin): the slump test's mould, lifted at a constant speed from t = 0 (m/s;
+// infinity: gone at t = 0, the instantaneous release), `height` the level it is filled to. A face of the
+// staircase is blocked while its centre is above the lower edge: it opens when the edge passes its centre (a
+// layer of faces at a time, every h_z / speed), at opening_time(k) exactly, so that a run can land its steps on
+// those times. The shell reaches the box's top: faces only ever open. (Blocking a face with flow through it, as
+// the rim of a 152 mm mould rising into a 160 mm box would, leaves the velocity with a divergence that the
+// next advection turns into lost or created paste: 5e-8 of the volume on the 5 mm slump.)
 struct LiftedMould {
   double axis_x = 0.0, axis_y = 0.0;  // m
   double radius = 0.076;              // m
-  double height = 0.152;              // m
+  double height = 0.152;              // m: the paste's level in it (the lab mould's height)
   double speed = std::numeric_limits<double>::infinity();  // m/s
 
   bool instant() const { return !(speed < std::numeric_limits<double>::infinity()); }

@@ -58,7 +58,9 @@ class FlowSolver {
   // Paste fraction = the exact share of each cell inside the box [lo, hi] (m) (additive over calls, capped at 1).
   void add_paste_box(const std::array<double, 3>& lo, const std::array<double, 3>& hi);
   void set_alpha(std::vector<double> alpha);
-  // Walls inside the box from the next step on (an empty mask: none); their faces' velocity is set to 0.
+  // Walls inside the box from the next step on (an empty mask: none); their faces' velocity is set to 0. Only
+  // unblock faces during a run: a newly blocked face that carried a flow leaves a divergence for the next
+  // advection (lost or created paste).
   void set_blocked_faces(FaceMask mask);
   const FaceMask& blocked_faces() const { return blocked_; }
 

@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <memory>
 #include <stdexcept>
 
@@ -297,10 +296,13 @@ class MouldLift {
     open_ = open;
     s.set_blocked_faces(mould_.faces(g_, s.time()));
   }
-  // The next time a layer opens (s), infinity when none is left: the run lands a step on it.
-  double next_opening() const {
-    if (mould_.instant() || open_ >= g_.n[2]) return std::numeric_limits<double>::infinity();
-    return mould_.opening_time(g_, open_);
+  // The step dt from time t shortened to land on the next opening time (no sliver left before it), so the lift
+  // keeps its schedule; unchanged when no layer is left to open (and for the instantaneous release).
+  double landed(double t, double dt) const {
+    if (mould_.instant() || open_ >= g_.n[2]) return dt;
+    const double t_open = mould_.opening_time(g_, open_), left = t_open - t;
+    if (t + dt >= t_open) return left;
+    return t + 1.5 * dt > t_open ? 0.5 * left : dt;
   }
 
  private:
@@ -359,12 +361,7 @@ SlumpResult bingham_slump(double cell, double m, double tau_y, double rho, doubl
   double rest_since = -1.0;  // s, the start of the current spell at rest
   bool released = mould.instant();
   while (s.time() < max_time) {
-    // Steps land on the layers' opening times (no sliver left before one), so the lift keeps its schedule.
-    double dt = s.next_time_step();
-    const double t_open = lift.next_opening(), left = t_open - s.time();
-    if (s.time() + dt >= t_open) dt = left;
-    else if (s.time() + 1.5 * dt > t_open) dt = 0.5 * left;
-    s.step(dt);
+    s.step(lift.landed(s.time(), s.next_time_step()));
     lift.update(s);  // the mask for the next step, from its start time
     r.max_divergence = std::max(r.max_divergence, relative_divergence(s.last()));
     if (progress) progress(s);
