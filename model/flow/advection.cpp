@@ -131,8 +131,15 @@ Faces face_densities(const Grid& g, const Phases& ph, const std::vector<double>&
   return rho;
 }
 
-AdvectionStats advect(const Grid& g, const Phases& ph, double dt, long step, std::vector<double>& alpha, Faces& u) {
+AdvectionStats advect(const Grid& g, const Phases& ph, double dt, long step, std::vector<double>& alpha, Faces& u,
+                      const FaceMask* blocked_faces) {
   const Faces u0 = u;
+  // A wall inside the box: its faces keep their velocity (0: no flux through them) as the box's walls do.
+  const FaceMask none;
+  const FaceMask& wall = blocked_faces ? *blocked_faces : none;
+  auto fixed = [&](int c, const std::array<int, 3>& q) {
+    return g.boundary_face(c, q[c]) || blocked(wall, c, g.face(c, q));
+  };
   AdvectionStats st;
   for (int d = 0; d < 3; ++d)
     for (double v : u0[d]) st.max_cfl = std::max(st.max_cfl, std::abs(v) * dt / g.h[d]);
@@ -185,7 +192,7 @@ AdvectionStats advect(const Grid& g, const Phases& ph, double dt, long step, std
         m = r * v;
       };
       for_faces(g, c, [&](const std::array<int, 3>& q) {
-        if (g.boundary_face(c, q[c])) return;
+        if (fixed(c, q)) return;
         const int p = q[d];
         // The control volume's two faces along d and their fluxes.
         double Mh, Vh, Ml, Vl;
@@ -223,10 +230,10 @@ AdvectionStats advect(const Grid& g, const Phases& ph, double dt, long step, std
     }
     alpha.swap(next);
   }
-  // Boundary faces keep their velocity (walls, the open side: set by the projection).
+  // Boundary faces keep their velocity (walls, the open side: set by the projection), and so do blocked faces.
   for (int c = 0; c < 3; ++c)
     for_faces(g, c, [&](const std::array<int, 3>& q) {
-      if (g.boundary_face(c, q[c])) u[c][g.face(c, q)] = u0[c][g.face(c, q)];
+      if (fixed(c, q)) u[c][g.face(c, q)] = u0[c][g.face(c, q)];
     });
   st.alpha_min = *std::min_element(alpha.begin(), alpha.end());
   st.alpha_max = *std::max_element(alpha.begin(), alpha.end());

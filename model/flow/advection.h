@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "model/flow/grid.h"
+#include "model/flow/obstacle.h"
 #include "model/flow/rheology.h"
 
 namespace pastemix::flow {
@@ -35,7 +36,9 @@ struct AdvectionStats {
 
 // Advances alpha and the face velocities over dt. The advecting velocity is u as given (divergence-free,
 // from the last projection); on return u holds the advected velocity. `step` picks the sweep order.
-AdvectionStats advect(const Grid& g, const Phases& ph, double dt, long step, std::vector<double>& alpha, Faces& u);
+// Blocked faces (obstacle.h; u = 0 there) carry no flux and, like the box's walls, keep their velocity.
+AdvectionStats advect(const Grid& g, const Phases& ph, double dt, long step, std::vector<double>& alpha, Faces& u,
+                      const FaceMask* blocked_faces = nullptr);
 
 // Face densities (kg/m3) from the cell fractions: the mean of the two cells' densities; a boundary face
 // takes its one cell's.

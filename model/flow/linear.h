@@ -17,6 +17,7 @@
 
 #include "model/flow/advection.h"
 #include "model/flow/grid.h"
+#include "model/flow/obstacle.h"
 #include "model/flow/rheology.h"
 
 namespace pastemix::flow {
@@ -59,6 +60,10 @@ class ViscousOperator {
   // force_floor (the solver passes the weight, ||rho_f g||: a paste at rest is not solved to its round-off).
   SolveStats solve(double dt, const Faces& rho_face, const std::vector<double>& mu_cell, Faces& u, double tol,
                    int max_iterations, const EdgeLaw* edge = nullptr, double force_floor = 0.0);
+  // Walls inside the box (obstacle.h), or none (nullptr or an empty mask): a blocked face is held at u = 0 and
+  // the shear terms of the edges around it carry nothing (free slip on the wall). Kept by pointer: the
+  // caller owns the mask and may change it between solves.
+  void set_blocked(const FaceMask* m) { blocked_ = m; }
 
  private:
   struct Term {
@@ -87,7 +92,9 @@ class ViscousOperator {
   std::vector<Fixed> fixed_;
   std::vector<std::pair<int, long>> dof_face_;  // (component, face) of each unknown
   Matrix M_;
+  const FaceMask* blocked_ = nullptr;
   double edge_viscosity(const Term& t, const EdgeLaw& e) const;
+  bool touches_wall(const Term& t) const;  // a shear term with a blocked face among its faces
 };
 
 // Pressure projection: solves div((dt / rho_f) grad p) = div u (p in Pa, 0 on an open side; in a closed box
@@ -112,6 +119,9 @@ class PressureOperator {
   // u -= (dt / rho_f) grad p on every face the projection acts on (the same discrete gradient, p = 0 outside an
   // open side): the pressure-gradient part of a step (a negative dt adds it back).
   void subtract_gradient(double dt, const Faces& rho_face, const std::vector<double>& p, Faces& u) const;
+  // Walls inside the box (obstacle.h), or none: a blocked face drops out of the operator (no flux: Neumann,
+  // the pressure may jump across the wall) and the gradient leaves its velocity alone. Kept by pointer.
+  void set_blocked(const FaceMask* m) { blocked_ = m; }
 
  private:
   struct Link {
@@ -126,6 +136,8 @@ class PressureOperator {
   Grid g_;
   std::vector<Link> links_;
   bool open_ = false;
+  const FaceMask* blocked_ = nullptr;
+  bool wall(const Link& l) const { return blocked_ && blocked(*blocked_, l.c, l.face); }
   long pin_ = 0;  // value position of cell 0's diagonal (pinned in the closed box's preconditioner)
   Matrix A_;
 };

@@ -106,6 +106,7 @@ void PressureOperator::fill(double dt, const Faces& rho_face) {
   double* val = A_.valuePtr();
   std::fill(val, val + A_.nonZeros(), 0.0);
   for (const Link& l : links_) {
+    if (wall(l)) continue;  // a wall inside the box: no flux through it
     const double k = dt / (rho_face[l.c][l.face] * g.h[l.c] * g.h[l.c]);
     if (l.a >= 0 && l.b >= 0) {
       val[l.paa] += k;
@@ -189,6 +190,7 @@ ProjectionStats PressureOperator::project(double dt, const Faces& rho_face, Face
 void PressureOperator::subtract_gradient(double dt, const Faces& rho_face, const std::vector<double>& p, Faces& u) const {
   const Grid& g = g_;
   for (const Link& l : links_) {
+    if (wall(l)) continue;
     const double k = dt / (rho_face[l.c][l.face] * g.h[l.c]);
     double& v = u[l.c][l.face];
     if (l.a >= 0 && l.b >= 0) v -= k * (p[l.b] - p[l.a]);

@@ -46,6 +46,16 @@ void FlowSolver::set_alpha(std::vector<double> alpha) {
   update_viscosity({});
 }
 
+void FlowSolver::set_blocked_faces(FaceMask mask) {
+  for (int c = 0; c < 3; ++c) {
+    if (mask[c].empty()) continue;
+    if (mask[c].size() != u_[c].size()) throw std::invalid_argument("flow: the blocked-face mask has the wrong size");
+    for (std::size_t f = 0; f < u_[c].size(); ++f)
+      if (mask[c][f]) u_[c][f] = 0.0;
+  }
+  blocked_ = std::move(mask);
+}
+
 double FlowSolver::next_time_step() const {
   double rate = 0.0;  // max |u_d| / h_d, 1/s
   for (int c = 0; c < 3; ++c)
@@ -61,6 +71,12 @@ double FlowSolver::next_time_step() const {
 double FlowSolver::neighbour(const std::vector<double>& uc, int c, int d, const std::array<int, 3>& q, int side) const {
   const int w = g_.wrap_cell(d, q[d] + side);
   const double in = uc[3 * g_.cell(q) + c];
+  // A wall inside the box between the two cells: free slip, no gradient across it (as on a free-slip side).
+  if (w >= 0 && !blocked_[d].empty()) {
+    std::array<int, 3> f = q;
+    f[d] = side > 0 ? (g_.periodic(d) ? w : q[d] + 1) : q[d];
+    if (blocked(blocked_, d, g_.face(d, f))) return in;
+  }
   if (w >= 0) {
     std::array<int, 3> r = q;
     r[d] = w;
@@ -136,6 +152,7 @@ Faces FlowSolver::gravity_kick(double dt) const {
         for (int i = 0; i < fd[0]; ++i) {
           const std::array<int, 3> q{i, j, k};
           if (g_.boundary_face(c, q[c]) && g_.side(c, q[c] == 0 ? 0 : 1).type != BoundaryType::open) continue;
+          if (blocked(blocked_, c, g_.face(c, q))) continue;
           kick[c][g_.face(c, q)] = s_.gravity[c] * dt;
         }
   }
@@ -159,7 +176,9 @@ StepStats FlowSolver::step(double dt) {
   std::vector<double> gamma;
   for (std::size_t c = 0; c < parts.size(); c += 4) gamma.push_back(std::sqrt(parts[c]));
   const Faces u_lag = lagged ? u_ : Faces{};  // the velocity the shear edges' strain rates come from
-  st.advection = advect(g_, ph_, dt, totals_.steps, alpha_, u_);
+  viscous_.set_blocked(&blocked_);
+  pressure_.set_blocked(&blocked_);
+  st.advection = advect(g_, ph_, dt, totals_.steps, alpha_, u_, &blocked_);
   require_finite_cells(g_, alpha_, "paste fraction", at("after advection"));
   require_finite_faces(g_, u_, "velocity", at("after advection"));
   const Faces rho = face_densities(g_, ph_, alpha_);

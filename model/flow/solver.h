@@ -12,6 +12,9 @@
 //   5. projection to a divergence-free velocity (relative divergence recomputed from the faces <=
 //      pressure_tolerance), the last gradient given back first, so that it solves for the whole new pressure
 //      with the last as its guess.
+// Walls inside the box (set_blocked_faces, model/flow/obstacle.h) are honoured by every stage: no flux, no
+// gravity or pressure gradient on their faces, a Neumann wall for the projection, u = 0 and no shear (free
+// slip) in the viscous step. Without them (the default) every stage is what it was, bit for bit.
 // The step is the flow's own: a DEM loop can call advance_to(t) with its own times and sub-cycle.
 #pragma once
 
@@ -21,6 +24,7 @@
 #include "model/flow/advection.h"
 #include "model/flow/grid.h"
 #include "model/flow/linear.h"
+#include "model/flow/obstacle.h"
 #include "model/flow/rheology.h"
 
 namespace pastemix::flow {
@@ -54,6 +58,11 @@ class FlowSolver {
   // Paste fraction = the exact share of each cell inside the box [lo, hi] (m) (additive over calls, capped at 1).
   void add_paste_box(const std::array<double, 3>& lo, const std::array<double, 3>& hi);
   void set_alpha(std::vector<double> alpha);
+  // Walls inside the box from the next step on (an empty mask: none); their faces' velocity is set to 0. Only
+  // unblock faces during a run: a newly blocked face that carried a flow leaves a divergence for the next
+  // advection (lost or created paste).
+  void set_blocked_faces(FaceMask mask);
+  const FaceMask& blocked_faces() const { return blocked_; }
 
   double next_time_step() const;
   StepStats step(double dt);
@@ -88,6 +97,7 @@ class FlowSolver {
   ViscousOperator viscous_;
   PressureOperator pressure_;
   Faces u_;
+  FaceMask blocked_;                        // walls inside the box; empty: none
   std::vector<double> p_, alpha_, mu_;      // p_: the pressure (Pa)
   bool pressure_ready_ = false;             // p_ balances gravity (set by the first step after the paste changes)
   double t_ = 0.0;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <stdexcept>
 
 #include "base/units.h"
 #include "model/flow/bingham.h"
@@ -254,7 +255,66 @@ std::vector<double> quarter_cylinder(const Grid& g) {
   return a;
 }
 
+// The paste inside the mould's staircase (LiftedMould::inside) up to the mould's height, the z overlap exact.
+std::vector<double> quarter_staircase(const Grid& g, const LiftedMould& mould) {
+  std::vector<double> a(g.cell_count(), 0.0);
+  for (int k = 0; k < g.n[2]; ++k) {
+    const double zf = std::clamp((mould.height - k * g.h[2]) / g.h[2], 0.0, 1.0);
+    for (int j = 0; j < g.n[1]; ++j)
+      for (int i = 0; i < g.n[0]; ++i)
+        if (mould.inside(g, i, j)) a[g.cell(i, j, k)] = zf;
+  }
+  return a;
+}
+
+// The highest paste column, m: the paste height sum alpha h_z of the tallest column.
+double highest_column(const FlowSolver& s) {
+  const Grid& g = s.grid();
+  double top = 0.0;
+  for (int j = 0; j < g.n[1]; ++j)
+    for (int i = 0; i < g.n[0]; ++i) {
+      double h = 0.0;
+      for (int k = 0; k < g.n[2]; ++k) h += s.alpha()[g.cell(i, j, k)] * g.h[2];
+      top = std::max(top, h);
+    }
+  return top;
+}
+
+// Lifts the mould: sets the solver's blocked faces whenever a layer of them opens (or the mould leaves the box).
+class MouldLift {
+ public:
+  MouldLift(const LiftedMould& mould, const Grid& g) : mould_(mould), g_(g) {}
+  void update(FlowSolver& s) {
+    if (mould_.instant()) return;
+    const int open = mould_.open_layers(g_, s.time());  // layers the lower edge has passed
+    if (open == open_) return;
+    open_ = open;
+    s.set_blocked_faces(mould_.faces(g_, s.time()));
+  }
+  // The step dt from time t shortened to land on the next opening time (no sliver left before it), so the lift
+  // keeps its schedule; unchanged when no layer is left to open (and for the instantaneous release).
+  double landed(double t, double dt) const {
+    if (mould_.instant() || open_ >= g_.n[2]) return dt;
+    const double t_open = mould_.opening_time(g_, open_), left = t_open - t;
+    if (t + dt >= t_open) return left;
+    return t + 1.5 * dt > t_open ? 0.5 * left : dt;
+  }
+
+ private:
+  LiftedMould mould_;
+  Grid g_;
+  int open_ = -1;
+};
+
 }  // namespace
+
+LiftedMould slump_mould(double speed) {
+  LiftedMould m;
+  m.radius = kMouldR;
+  m.height = kMouldH;
+  m.speed = speed;
+  return m;
+}
 
 SlumpShape slump_shape(const FlowSolver& s) {
   const Grid& g = s.grid();
@@ -266,10 +326,12 @@ SlumpShape slump_shape(const FlowSolver& s) {
 }
 
 SlumpResult bingham_slump(double cell, double m, double tau_y, double rho, double eta_B, double max_time,
-                          const FlowProgress& progress) {
+                          const FlowProgress& progress, double lift_speed) {
+  if (!(lift_speed > 0.0)) throw std::invalid_argument("slump: the lift speed must be positive (infinity: at once)");
   SlumpResult r;
   r.cell = cell;
   r.m = m;
+  r.lift_speed = lift_speed;
   r.tau_y = tau_y;
   r.rho = rho;
   Grid g;
@@ -282,18 +344,27 @@ SlumpResult bingham_slump(double cell, double m, double tau_y, double rho, doubl
   ph.rho_paste = rho;
   ph.paste = std::make_shared<Bingham>(tau_y, eta_B, m);
   FlowSolver s(g, ph, FlowSettings{});
-  s.set_alpha(quarter_cylinder(g));
+  const LiftedMould mould = slump_mould(lift_speed);
+  s.set_alpha(mould.instant() ? quarter_cylinder(g) : quarter_staircase(g, mould));
+  MouldLift lift(mould, g);
+  lift.update(s);
   const double v0 = s.paste_volume();
   r.slump_pashias = pashias_boger_slump(tau_y, rho, kMouldH);
   r.spread_roussel = 2.0 * roussel_coussot_radius(tau_y, rho, 4.0 * v0);  // the whole sample's volume
   // At rest once the paste's RMS speed is below kRestSpeed (bingham.h) and stays so for kSlumpRestHold, after
-  // the first 0.1 s (it starts at rest).
+  // the first 0.1 s (it starts at rest) and once the mould has let go of it.
   double rest_since = -1.0;  // s, the start of the current spell at rest
+  bool released = mould.instant();
   while (s.time() < max_time) {
-    s.step(s.next_time_step());
+    s.step(lift.landed(s.time(), s.next_time_step()));
+    lift.update(s);  // the mask for the next step, from its start time
     r.max_divergence = std::max(r.max_divergence, relative_divergence(s.last()));
     if (progress) progress(s);
-    if (s.time() <= 0.1 || !at_rest(s)) {
+    if (!released && mould.lower_edge(s.time()) > highest_column(s)) {
+      released = true;
+      r.released = s.time();
+    }
+    if (s.time() <= 0.1 || !released || !at_rest(s)) {
       rest_since = -1.0;
       continue;
     }

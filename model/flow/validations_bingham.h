@@ -8,8 +8,10 @@
 #pragma once
 
 #include <functional>
+#include <limits>
 #include <vector>
 
+#include "model/flow/obstacle.h"
 #include "model/flow/validations.h"
 
 namespace pastemix::flow {
@@ -81,7 +83,10 @@ CliffResult bingham_cliff(double height_over_scale, int cells, double m, double 
 namespace pastemix::flow {
 
 // --- slump: the lab's slump test (152 mm cylinder, H = D, datasets/thesis/slump_tests.csv) on a quarter
-// domain (symmetry planes x = 0 and y = 0, no-slip plate, open top), the mould lifted at once, run to rest
+// domain (symmetry planes x = 0 and y = 0, no-slip plate, open top), the mould lifted at a finite speed
+// (obstacle.h: a staircase shell of radius 76 mm whose lower edge rises at `lift_speed` from t = 0, free slip on
+// both its sides; the paste fills the staircase inside it to 152 mm) or at once (lift_speed infinite: the
+// exact quarter cylinder and no shell, as before), run to rest
 // (model/flow/bingham.h at_rest: the paste's RMS speed below kRestSpeed). References, both quasi-static:
 //   Pashias, Boger, Summers & Glenister (1996, J. Rheol. 40:1179), the cylinder: S/H = 1 - 2 tau'(1 - ln 2 tau'),
 //     tau' = tau_y / (rho g H) (101.7 mm at 138 Pa, 1843 kg/m3);
@@ -92,6 +97,8 @@ namespace pastemix::flow {
 // the diameter of the circle with the area the paste covers on the plate (the bottom row's alpha). ---
 struct SlumpResult {
   double cell = 0.0, m = 0.0;            // m, s
+  double lift_speed = 0.0;               // m/s; infinity: the instantaneous release
+  double released = 0.0;                 // s, when the mould's lower edge passed the paste's highest column
   double tau_y = 0.0, rho = 0.0;         // Pa, kg/m3 (the store's)
   double time = 0.0;                     // s, when at rest (the start of a spell of kSlumpRestHold) or the limit
   double end_time = 0.0;                 // s, the end of the run (time + kSlumpRestHold when at rest)
@@ -114,8 +121,12 @@ SlumpShape slump_shape(const FlowSolver& s);
 inline constexpr double kSlumpRestHold = 0.1;  // s
 // `progress`, when given, is called after every step (the command prints a line per 0.05 s of flow time from it).
 using FlowProgress = std::function<void(const FlowSolver&)>;
+// At rest counts only once the mould has let go of the paste (its lower edge above the highest column).
 SlumpResult bingham_slump(double cell, double m, double tau_y, double rho, double eta_B, double max_time = 4.0,
-                          const FlowProgress& progress = {});
+                          const FlowProgress& progress = {},
+                          double lift_speed = std::numeric_limits<double>::infinity());
+// The slump's mould (radius 76 mm, height 152 mm, axis on the quarter domain's corner) lifted at `speed` (m/s).
+LiftedMould slump_mould(double speed);
 double pashias_boger_slump(double tau_y, double rho, double H);  // m
 double roussel_coussot_radius(double tau_y, double rho, double volume);  // m
 

@@ -225,13 +225,36 @@ double ViscousOperator::edge_viscosity(const Term& t, const EdgeLaw& e) const {
   return t.cell_count / inv;
 }
 
+bool ViscousOperator::touches_wall(const Term& t) const {
+  for (int a = 0; a < t.dof_count; ++a) {
+    const auto& [c, f] = dof_face_[dofs_[t.dof_begin + a]];
+    if (blocked(*blocked_, c, f)) return true;
+  }
+  for (int a = 0; a < t.fixed_count; ++a) {
+    const Fixed& f = fixed_[t.fixed_begin + a];
+    if (blocked(*blocked_, f.c, f.face)) return true;
+  }
+  return false;
+}
+
 SolveStats ViscousOperator::solve(double dt, const Faces& rho_face, const std::vector<double>& mu, Faces& u, double tol,
                                   int max_iterations, const EdgeLaw* edge, double force_floor) {
   double* val = M_.valuePtr();
   std::fill(val, val + M_.nonZeros(), 0.0);
   Eigen::VectorXd rhs = Eigen::VectorXd::Zero(size_), x(size_);
+  // A wall inside the box (obstacle.h): its faces are unknowns held at 0 (their rows and columns keep only
+  // the diagonal), and a shear term with one of them among its faces carries nothing (free slip).
+  std::vector<unsigned char> wall;
+  if (blocked_ && any_blocked(*blocked_)) {
+    wall.assign(size_, 0);
+    for (long d = 0; d < size_; ++d) wall[d] = blocked(*blocked_, dof_face_[d].first, dof_face_[d].second);
+  }
   long pos = 0;
   for (const Term& t : terms_) {
+    if (!wall.empty() && t.harmonic && touches_wall(t)) {
+      pos += static_cast<long>(t.dof_count) * t.dof_count;
+      continue;
+    }
     double w;
     if (t.harmonic && edge) {
       w = t.scale * edge_viscosity(t, *edge);
@@ -247,6 +270,16 @@ SolveStats ViscousOperator::solve(double dt, const Faces& rho_face, const std::v
       const Fixed& f = fixed_[t.fixed_begin + a];
       b += f.coef * u[f.c][f.face];
     }
+    if (!wall.empty()) {  // a blocked unknown is a fixed 0: no row, no column, nothing to b
+      for (int a = 0; a < t.dof_count; ++a) {
+        const long da = dofs_[t.dof_begin + a];
+        const double ca = coefs_[t.dof_begin + a];
+        if (!wall[da]) rhs[da] -= w * b * ca;
+        for (int c = 0; c < t.dof_count; ++c, ++pos)
+          if (!wall[da] && !wall[dofs_[t.dof_begin + c]]) val[positions_[pos]] += w * ca * coefs_[t.dof_begin + c];
+      }
+      continue;
+    }
     for (int a = 0; a < t.dof_count; ++a) {
       const double ca = coefs_[t.dof_begin + a];
       rhs[dofs_[t.dof_begin + a]] -= w * b * ca;
@@ -258,9 +291,10 @@ SolveStats ViscousOperator::solve(double dt, const Faces& rho_face, const std::v
       const long d = dof_[c][f];
       if (d < 0) continue;
       const double m = rho_face[c][f] / dt;
+      const double v = !wall.empty() && wall[d] ? 0.0 : u[c][f];
       val[diagonal_[d]] += m;
-      rhs[d] += m * u[c][f];
-      x[d] = u[c][f];
+      rhs[d] += m * v;
+      x[d] = v;
     }
   SolveStats st;
   const double norm = rhs.norm();

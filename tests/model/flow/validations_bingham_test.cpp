@@ -73,3 +73,14 @@ TEST_CASE("validation slump: 20 mm cells for 0.5 s keep the paste volume to 1e-8
   CHECK(r.max_divergence <= 1e-10);
   CHECK(r.slump > 0.02);  // it has slumped by more than a cell in 0.5 s
 }
+
+TEST_CASE("validation slump: the mould lifted at 60 mm/s, 20 mm cells for 0.5 s keep the paste volume to 1e-8") {
+  omp_set_num_threads(1);
+  const SlumpResult r = bingham_slump(0.02, 1000.0, 138.0, 1843.0, 0.7, 0.5, {}, 0.06);
+  CHECK(r.volume_drift <= 1e-8);
+  CHECK(r.max_divergence <= 1e-10);
+  CHECK(!r.at_rest);           // the edge is at 30 mm at 0.5 s: the mould still holds the paste
+  CHECK(r.slump > 0.0);        // it has started to slump below the edge
+  const SlumpResult at_once = bingham_slump(0.02, 1000.0, 138.0, 1843.0, 0.7, 0.5);
+  CHECK(r.slump < at_once.slump);  // held back by the mould
+}
