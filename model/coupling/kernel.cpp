@@ -89,6 +89,38 @@ double interpolate(const flow::Grid& g, const Stencil& s, const std::vector<doub
   return sum;
 }
 
+namespace {
+// Calls f(c, low face, high face, w) for every cell of the stencil and every component c.
+template <class F>
+void each_face_pair(const flow::Grid& g, const Stencil& s, F&& f) {
+  for (const auto& [k, wk] : s.axis[2])
+    for (const auto& [j, wj] : s.axis[1])
+      for (const auto& [i, wi] : s.axis[0]) {
+        const std::array<int, 3> q{i, j, k};
+        const double w = wi * wj * wk;
+        for (int c = 0; c < 3; ++c) {
+          std::array<int, 3> hi = q;
+          hi[c] = g.periodic(c) ? (q[c] + 1) % g.n[c] : q[c] + 1;
+          f(c, g.face(c, q), g.face(c, hi), w);
+        }
+      }
+}
+}  // namespace
+
+std::array<double, 3> interpolate_velocity(const flow::Grid& g, const Stencil& s, const flow::Faces& u) {
+  std::array<double, 3> v{};
+  each_face_pair(g, s, [&](int c, long lo, long hi, double w) { v[c] += w * 0.5 * (u[c][lo] + u[c][hi]); });
+  return v;
+}
+
+void deposit_faces(const flow::Grid& g, const Stencil& s, const std::array<double, 3>& amount, flow::Faces& faces) {
+  each_face_pair(g, s, [&](int c, long lo, long hi, double w) {
+    const double half = 0.5 * w * amount[c];
+    faces[c][lo] += half;
+    faces[c][hi] += half;
+  });
+}
+
 double weight_sum(const Stencil& s) {
   double total = 1.0;
   for (const auto& axis : s.axis) {

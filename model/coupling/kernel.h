@@ -29,6 +29,7 @@
 #include <utility>
 #include <vector>
 
+#include "model/flow/advection.h"
 #include "model/flow/grid.h"
 
 namespace pastemix::coupling {
@@ -53,6 +54,14 @@ void deposit(const flow::Grid& g, const Stencil& s, double amount, std::vector<d
 double interpolate(const flow::Grid& g, const Stencil& s, const std::vector<double>& cell_values);
 // Sum of the particle's weights (1 to round-off when its centre is inside the box, 0 when outside).
 double weight_sum(const Stencil& s);
+
+// The MAC faces. The velocity at a particle is the kernel's mean of the cell velocities, each component the
+// mean of the cell's two faces along it (flow::FlowSolver::cell_velocity); the adjoint spreads an amount (a
+// force, N) onto the faces: w_pc / 2 to each of cell c's two faces per component. So sum over the faces of
+// (deposit_faces F) u = F . interpolate_velocity(u), and the faces receive exactly F (a wall face's share is
+// the wall's: its velocity is fixed).
+std::array<double, 3> interpolate_velocity(const flow::Grid& g, const Stencil& s, const flow::Faces& u);
+void deposit_faces(const flow::Grid& g, const Stencil& s, const std::array<double, 3>& amount, flow::Faces& faces);
 
 // Solid volume fraction per cell, sum_p V_p w_pc / V_cell (V_p = pi d^3 / 6), from particle centres (m) and
 // diameters (m). Particles are added in order, serially: the result is independent of the thread count.
