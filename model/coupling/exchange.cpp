@@ -79,6 +79,16 @@ std::array<std::vector<Exchange::Row>, 3> Exchange::rows(const ExchangeParticles
   return out;
 }
 
+double Exchange::Row::at(const std::vector<double>& field) const {
+  double s = 0.0;
+  for (std::size_t e = 0; e < face.size(); ++e) s += w[e] * field[face[e]];
+  return s;
+}
+
+void Exchange::Row::spread(double amount, std::vector<double>& field) const {
+  for (std::size_t e = 0; e < face.size(); ++e) field[face[e]] += w[e] * amount;
+}
+
 ExchangeStats Exchange::apply(double dt, const ExchangeParticles& p, std::vector<std::array<double, 3>>& v,
                               flow::Faces& u, const flow::Faces& face_mass, const flow::Faces* paste_mask,
                               std::vector<std::array<double, 3>>& impulse) const {
@@ -91,90 +101,108 @@ ExchangeStats Exchange::apply(double dt, const ExchangeParticles& p, std::vector
       throw std::invalid_argument(fmt::format("coupling exchange: particle {}: mass {} kg, beta {} kg/s, yield force {} N "
                                               "(need mass > 0, beta >= 0, yield force >= 0, finite)",
                                               i, p.mass[i], p.beta[i], p.yield_force[i]));
-  const auto W = rows(p, face_mass, paste_mask);
-  auto at = [&](int c, std::size_t i, const std::vector<double>& field) {
-    double s = 0.0;
-    for (std::size_t e = 0; e < W[c][i].face.size(); ++e) s += W[c][i].w[e] * field[W[c][i].face[e]];
-    return s;
-  };
-  auto spread = [&](int c, std::size_t i, double amount, std::vector<double>& field) {
-    for (std::size_t e = 0; e < W[c][i].face.size(); ++e) field[W[c][i].face[e]] += W[c][i].w[e] * amount;
-  };
+  const Rows W = rows(p, face_mass, paste_mask);
   ExchangeStats st;
   impulse.assign(n, {0.0, 0.0, 0.0});
-  // 1. The yield part against the frozen fluid (a particle with no paste faces has none).
-  flow::Faces reaction;
+  yield_part(dt, p, W, v, u, face_mass, impulse, st);
+  for (int c = 0; c < 3; ++c) drag_part(c, dt, p, W, v, u[c], face_mass[c], impulse, st);
+  return st;
+}
+
+void Exchange::yield_part(double dt, const ExchangeParticles& p, const Rows& W, std::vector<std::array<double, 3>>& v,
+                          flow::Faces& u, const flow::Faces& face_mass, std::vector<std::array<double, 3>>& impulse,
+                          ExchangeStats& st) {
+  flow::Faces reaction;  // N s on the faces, applied after all particles: the fluid stays frozen meanwhile
   for (int c = 0; c < 3; ++c) reaction[c].assign(u[c].size(), 0.0);
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = 0; i < p.centre.size(); ++i) {
+    // A particle with no paste face in its support has no yield part.
     if (p.yield_force[i] == 0.0 || W[0][i].face.empty() || W[1][i].face.empty() || W[2][i].face.empty()) continue;
     std::array<double, 3> w{};
-    for (int c = 0; c < 3; ++c) w[c] = v[i][c] - at(c, i, u[c]);
+    for (int c = 0; c < 3; ++c) w[c] = v[i][c] - W[c][i].at(u[c]);
     const double speed = std::hypot(w[0], w[1], w[2]);
     if (speed == 0.0) continue;
     const double bound = p.yield_force[i] * dt;  // N s
-    const double scale = p.mass[i] * speed <= bound ? p.mass[i] : bound / speed;
-    if (p.mass[i] * speed <= bound) ++st.stuck;
+    const bool stick = p.mass[i] * speed <= bound;
+    const double scale = stick ? p.mass[i] : bound / speed;
+    st.stuck += stick ? 1 : 0;
     for (int c = 0; c < 3; ++c) {
       const double J = -scale * w[c];
       impulse[i][c] += J;
       v[i][c] += J / p.mass[i];
-      spread(c, i, -J, reaction[c]);
+      W[c][i].spread(-J, reaction[c]);
     }
   }
   for (int c = 0; c < 3; ++c)
     for (std::size_t f = 0; f < u[c].size(); ++f)
       if (reaction[c][f] != 0.0) u[c][f] += reaction[c][f] / face_mass[c][f];
-  // 2. The velocity-dependent part, implicit in both phases (the particles eliminated exactly).
-  std::vector<double> B(n);
-  for (std::size_t i = 0; i < n; ++i) B[i] = p.beta[i] * p.mass[i] / (p.mass[i] + dt * p.beta[i]);
-  for (int c = 0; c < 3; ++c) {
-    const std::vector<double>& M = face_mass[c];
-    const std::size_t F = u[c].size();
-    auto mass_of = [&](std::size_t f) { return M[f] > 0.0 ? M[f] : 1.0; };  // faces no particle reaches
-    auto apply_A = [&](const std::vector<double>& x, std::vector<double>& y) {
-      for (std::size_t f = 0; f < F; ++f) y[f] = mass_of(f) * x[f];
-      for (std::size_t i = 0; i < n; ++i)
-        if (B[i] > 0.0) spread(c, i, dt * B[i] * at(c, i, x), y);
-    };
-    std::vector<double> rhs(F), diag(F), x = u[c], r(F), z(F), d(F), q(F);
-    for (std::size_t f = 0; f < F; ++f) rhs[f] = mass_of(f) * u[c][f], diag[f] = mass_of(f);
-    for (std::size_t i = 0; i < n; ++i) {
-      if (B[i] == 0.0) continue;
-      spread(c, i, dt * B[i] * v[i][c], rhs);
-      for (std::size_t e = 0; e < W[c][i].face.size(); ++e) diag[W[c][i].face[e]] += dt * B[i] * W[c][i].w[e] * W[c][i].w[e];
-    }
-    apply_A(x, q);
-    for (std::size_t f = 0; f < F; ++f) r[f] = rhs[f] - q[f], z[f] = r[f] / diag[f], d[f] = z[f];
-    const double bnorm = std::sqrt(dot(rhs, rhs));
-    double rz = dot(r, z), rel = bnorm > 0.0 ? std::sqrt(dot(r, r)) / bnorm : 0.0;
-    int it = 0;
-    for (; it < max_iterations && rel > tolerance; ++it) {
-      apply_A(d, q);
-      const double a = rz / dot(d, q);
-      for (std::size_t f = 0; f < F; ++f) x[f] += a * d[f], r[f] -= a * q[f], z[f] = r[f] / diag[f];
-      const double rz1 = dot(r, z);
-      for (std::size_t f = 0; f < F; ++f) d[f] = z[f] + (rz1 / rz) * d[f];
-      rz = rz1;
-      rel = std::sqrt(dot(r, r)) / bnorm;
-    }
-    if (rel > tolerance)
-      throw RuntimeFailure(fmt::format("coupling exchange: the implicit drag solve (component {}) did not converge: "
-                                       "relative residual {:.3g} after {} iterations", c, rel, it));
-    st.iterations += it;
-    st.relative_residual = std::max(st.relative_residual, rel);
-    // The particles' impulses decide; the faces take exactly their opposite.
-    std::fill(reaction[c].begin(), reaction[c].end(), 0.0);
-    for (std::size_t i = 0; i < n; ++i) {
-      if (B[i] == 0.0 || W[c][i].face.empty()) continue;
-      const double J = dt * B[i] * (at(c, i, x) - v[i][c]);
-      impulse[i][c] += J;
-      v[i][c] += J / p.mass[i];
-      spread(c, i, -J, reaction[c]);
-    }
-    for (std::size_t f = 0; f < F; ++f)
-      if (reaction[c][f] != 0.0) u[c][f] += reaction[c][f] / M[f];
+}
+
+namespace {
+
+// Jacobi-preconditioned CG for A x = b (A SPD, applied by apply_A), from the given x; returns the iterations
+// and sets `rel` to ||b - A x|| / ||b|| at exit.
+template <class Apply>
+int conjugate_gradients(Apply&& apply_A, const std::vector<double>& b, const std::vector<double>& diag,
+                        std::vector<double>& x, double tol, int max_iterations, double& rel) {
+  const std::size_t F = b.size();
+  std::vector<double> r(F), z(F), d(F), q(F);
+  apply_A(x, q);
+  for (std::size_t f = 0; f < F; ++f) r[f] = b[f] - q[f], z[f] = r[f] / diag[f], d[f] = z[f];
+  const double bnorm = std::sqrt(dot(b, b));
+  double rz = dot(r, z);
+  rel = bnorm > 0.0 ? std::sqrt(dot(r, r)) / bnorm : 0.0;
+  int it = 0;
+  for (; it < max_iterations && rel > tol; ++it) {
+    apply_A(d, q);
+    const double a = rz / dot(d, q);
+    for (std::size_t f = 0; f < F; ++f) x[f] += a * d[f], r[f] -= a * q[f], z[f] = r[f] / diag[f];
+    const double rz1 = dot(r, z);
+    for (std::size_t f = 0; f < F; ++f) d[f] = z[f] + (rz1 / rz) * d[f];
+    rz = rz1;
+    rel = std::sqrt(dot(r, r)) / bnorm;
   }
-  return st;
+  return it;
+}
+
+}  // namespace
+
+void Exchange::drag_part(int c, double dt, const ExchangeParticles& p, const Rows& W,
+                         std::vector<std::array<double, 3>>& v, std::vector<double>& u, const std::vector<double>& M,
+                         std::vector<std::array<double, 3>>& impulse, ExchangeStats& st) const {
+  const std::size_t n = p.centre.size(), F = u.size();
+  std::vector<double> B(n);  // kg/s: beta with the particle eliminated, beta m / (m + dt beta)
+  for (std::size_t i = 0; i < n; ++i) B[i] = p.beta[i] * p.mass[i] / (p.mass[i] + dt * p.beta[i]);
+  auto mass_of = [&](std::size_t f) { return M[f] > 0.0 ? M[f] : 1.0; };  // faces no particle reaches
+  auto apply_A = [&](const std::vector<double>& x, std::vector<double>& y) {
+    for (std::size_t f = 0; f < F; ++f) y[f] = mass_of(f) * x[f];
+    for (std::size_t i = 0; i < n; ++i)
+      if (B[i] > 0.0) W[c][i].spread(dt * B[i] * W[c][i].at(x), y);
+  };
+  std::vector<double> rhs(F), diag(F), x = u;
+  for (std::size_t f = 0; f < F; ++f) rhs[f] = mass_of(f) * u[f], diag[f] = mass_of(f);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (B[i] == 0.0) continue;
+    W[c][i].spread(dt * B[i] * v[i][c], rhs);
+    for (std::size_t e = 0; e < W[c][i].face.size(); ++e) diag[W[c][i].face[e]] += dt * B[i] * W[c][i].w[e] * W[c][i].w[e];
+  }
+  double rel = 0.0;
+  const int it = conjugate_gradients(apply_A, rhs, diag, x, tolerance, max_iterations, rel);
+  if (rel > tolerance)
+    throw RuntimeFailure(fmt::format("coupling exchange: the implicit drag solve (component {}) did not converge: "
+                                     "relative residual {:.3g} after {} iterations", c, rel, it));
+  st.iterations += it;
+  st.relative_residual = std::max(st.relative_residual, rel);
+  // The particles' impulses decide; the faces take exactly their opposite.
+  std::vector<double> reaction(F, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (B[i] == 0.0 || W[c][i].face.empty()) continue;
+    const double J = dt * B[i] * (W[c][i].at(x) - v[i][c]);
+    impulse[i][c] += J;
+    v[i][c] += J / p.mass[i];
+    W[c][i].spread(-J, reaction);
+  }
+  for (std::size_t f = 0; f < F; ++f)
+    if (reaction[f] != 0.0) u[f] += reaction[f] / M[f];
 }
 
 }  // namespace pastemix::coupling

@@ -65,9 +65,19 @@ class Exchange {
   struct Row {  // one particle's faces and weights for one component
     std::vector<long> face;
     std::vector<double> w;
+    double at(const std::vector<double>& field) const;               // sum_f w_f field_f
+    void spread(double amount, std::vector<double>& field) const;    // field_f += w_f amount
   };
-  std::array<std::vector<Row>, 3> rows(const ExchangeParticles& p, const flow::Faces& face_mass,
-                                       const flow::Faces* paste_mask) const;
+  using Rows = std::array<std::vector<Row>, 3>;
+  Rows rows(const ExchangeParticles& p, const flow::Faces& face_mass, const flow::Faces* paste_mask) const;
+  // Stage 1 (yield, against the frozen u) and stage 2 for one component (implicit drag); both update v, u and
+  // impulse, and give the faces exactly the opposite of what the particles get.
+  static void yield_part(double dt, const ExchangeParticles& p, const Rows& W, std::vector<std::array<double, 3>>& v,
+                         flow::Faces& u, const flow::Faces& face_mass, std::vector<std::array<double, 3>>& impulse,
+                         ExchangeStats& st);
+  void drag_part(int c, double dt, const ExchangeParticles& p, const Rows& W, std::vector<std::array<double, 3>>& v,
+                 std::vector<double>& u, const std::vector<double>& M, std::vector<std::array<double, 3>>& impulse,
+                 ExchangeStats& st) const;
   flow::Grid g_;
   double c_;
 };

@@ -70,6 +70,26 @@ void FlowSolver::set_next_fluid_fraction(std::vector<double> eps_end, bool with_
   with_rate_ = with_rate;
 }
 
+void FlowSolver::project_continuity(double dt, const FluidFraction& vf) {
+  // The residual is measured against the larger of itself, the step's source and the last projection's start:
+  // once the solid stops, u already meets the new continuity to the last tolerance, and solving that round-off
+  // to 1e-10 of itself cannot be done (nor is it needed).
+  double r0 = 0.0, source = 0.0;
+  for (double r : continuity_residual(g_, u_, &vf)) r0 += r * r;
+  for (double r : *vf.rate) source += r * r;
+  r0 = std::sqrt(r0);
+  const double reference = std::max(std::sqrt(source), last_.projection.divergence_before);
+  if (!(r0 > s_.pressure_tolerance * reference)) return;
+  std::vector<double> phi(g_.cell_count(), 0.0);  // an impulse (Pa), not kept: the pressure is p_
+  try {
+    pressure_.project(dt, face_densities(g_, ph_, alpha_), u_, phi, s_.pressure_tolerance * std::max(reference, r0) / r0,
+                      s_.max_iterations, &vf);
+  } catch (const RuntimeFailure& e) {
+    throw RuntimeFailure(fmt::format("{} (the continuity projection before advection) in the step from t = {:.9g} s",
+                                     e.what(), t_));
+  }
+}
+
 double FlowSolver::next_time_step() const {
   double rate = 0.0;  // max |u_d| / h_d, 1/s
   for (int c = 0; c < 3; ++c)
@@ -191,24 +211,7 @@ StepStats FlowSolver::step(double dt) {
     rate.assign(g_.cell_count(), 0.0);
     if (with_rate_)
       for (long c = 0; c < g_.cell_count(); ++c) rate[c] = (eps_next_[c] - eps_[c]) / dt;
-    const FluidFraction vf{&eps_face, &rate};
-    // Its residual is measured against the larger of the step's source and the last projection's start, not
-    // against itself: once the solid stops, u already meets the new continuity to the last tolerance, and
-    // solving that round-off to 1e-10 of itself cannot be done (nor is it needed).
-    double r0 = 0.0, source = 0.0;
-    for (double r : continuity_residual(g_, u_, &vf)) r0 += r * r;
-    for (double r : rate) source += r * r;
-    const double reference = std::max(std::sqrt(source), last_.projection.divergence_before);
-    r0 = std::sqrt(r0);
-    std::vector<double> phi(g_.cell_count(), 0.0);  // an impulse (Pa), not kept: the pressure is p_
-    try {
-      if (r0 > s_.pressure_tolerance * reference)
-        pressure_.project(dt, face_densities(g_, ph_, alpha_), u_, phi, s_.pressure_tolerance * reference / r0,
-                          s_.max_iterations, &vf);
-    } catch (const RuntimeFailure& e) {
-      throw RuntimeFailure(fmt::format("{} (the continuity projection before advection) in the step from t = {:.9g} s",
-                                       e.what(), t_));
-    }
+    project_continuity(dt, FluidFraction{&eps_face, &rate});
   }
   const FluidFraction vf_rest{&eps_face, nullptr}, vf_step{&eps_face, &rate};
   const FluidFraction* vf0 = coupled ? &vf_rest : nullptr;

@@ -93,6 +93,8 @@ class FlowSolver {
 
  private:
   void update_viscosity(const std::vector<double>& gamma);
+  // With particles: projects u for the step's continuity div(eps_f u) = -d eps_f/dt before the transport.
+  void project_continuity(double dt, const FluidFraction& vf);
   Faces gravity_kick(double dt) const;  // g dt on every face that is not a wall
   // Component c of the cell velocity next to cell q along d (side +-1), a wall's ghost value outside the box.
   double neighbour(const std::vector<double>& uc, int c, int d, const std::array<int, 3>& q, int side) const;  // empty: gamma_dot = 0 (a Newtonian law)
