@@ -91,7 +91,7 @@ TEST_CASE("exchange: one particle's drag impulse is the implicit two-phase close
   }
 }
 
-TEST_CASE("exchange: in a periodic box particles + fluid gain exactly the gravity impulse; drag = -(force on the fluid)") {
+TEST_CASE("exchange: in a periodic box particles + fluid gain exactly the gravity impulse, drag = -(force on the fluid)") {
   const flow::Grid g = periodic_box();
   std::mt19937_64 rng(21);
   std::uniform_real_distribution<double> U(0.0, 1.0);
@@ -169,7 +169,7 @@ TEST_CASE("exchange: the yield part sticks a slow particle to the frozen fluid a
   CHECK(p.v[1][1] == doctest::Approx(u1[1] + 1.0 - Fy * dt / m).epsilon(1e-13));
 }
 
-TEST_CASE("exchange: wall faces and masked (air) faces take no reaction; a particle in air gets no paste drag") {
+TEST_CASE("exchange: wall faces and masked (air) faces take no reaction, a particle in air gets no paste drag") {
   flow::Grid g = periodic_box();
   for (auto& b : g.bc) b.type = flow::BoundaryType::no_slip;
   const flow::Faces M = faces(g, 1843.0 * g.cell_volume());
