@@ -131,8 +131,26 @@ Faces face_densities(const Grid& g, const Phases& ph, const std::vector<double>&
   return rho;
 }
 
+Faces face_means(const Grid& g, const std::vector<double>& cells) {
+  Faces out;
+  for (int c = 0; c < 3; ++c) {
+    out[c].assign(g.face_count(c), 0.0);
+    for_faces(g, c, [&](const std::array<int, 3>& q) {
+      std::array<int, 3> a = q, b = q;
+      a[c] = g.wrap_cell(c, q[c] - 1);
+      b[c] = g.wrap_cell(c, q[c]);
+      double sum = 0.0;
+      int count = 0;
+      if (a[c] >= 0) sum += cells[g.cell(a)], ++count;
+      if (b[c] >= 0) sum += cells[g.cell(b)], ++count;
+      out[c][g.face(c, q)] = sum / count;
+    });
+  }
+  return out;
+}
+
 AdvectionStats advect(const Grid& g, const Phases& ph, double dt, long step, std::vector<double>& alpha, Faces& u,
-                      const FaceMask* blocked_faces) {
+                      const FaceMask* blocked_faces, const FluidFractionStep* eps) {
   const Faces u0 = u;
   // A wall inside the box: its faces keep their velocity (0: no flux through them) as the box's walls do.
   const FaceMask none;
@@ -140,9 +158,21 @@ AdvectionStats advect(const Grid& g, const Phases& ph, double dt, long step, std
   auto fixed = [&](int c, const std::array<int, 3>& q) {
     return g.boundary_face(c, q[c]) || blocked(wall, c, g.face(c, q));
   };
+  // The advecting velocity: u itself, or the fluid's volume flux eps_f u with particles in the cells.
+  Faces flux_velocity;
+  Faces eps_old_face;
+  if (eps != nullptr) {
+    eps_old_face = face_means(g, *eps->old_cell);
+    for (int c = 0; c < 3; ++c) {
+      flux_velocity[c].resize(u0[c].size());
+      for (std::size_t f = 0; f < u0[c].size(); ++f) flux_velocity[c][f] = (*eps->new_face)[c][f] * u0[c][f];
+    }
+  }
+  const Faces& adv = eps != nullptr ? flux_velocity : u0;
+  std::vector<double> dilatation(eps != nullptr ? alpha.size() : 0, 0.0);  // sum over the sweeps of div_d(eps u) dt
   AdvectionStats st;
   for (int d = 0; d < 3; ++d)
-    for (double v : u0[d]) st.max_cfl = std::max(st.max_cfl, std::abs(v) * dt / g.h[d]);
+    for (double v : adv[d]) st.max_cfl = std::max(st.max_cfl, std::abs(v) * dt / g.h[d]);
   if (st.max_cfl > 0.5 + 1e-12)
     throw std::logic_error("flow advection: CFL above 1/2 per sweep (the step size is chosen wrongly)");
 
@@ -154,6 +184,7 @@ AdvectionStats advect(const Grid& g, const Phases& ph, double dt, long step, std
     mom[c].resize(rho[c].size());
     mom_c[c].resize(rho[c].size());
     for (std::size_t f = 0; f < rho[c].size(); ++f) {
+      if (eps != nullptr) rho[c][f] *= eps_old_face[c][f];  // the fluid's mass in the control volume
       mom[c][f] = rho[c][f] * u0[c][f];
       mom_c[c][f] = rho_c[c][f] * u0[c][f];
     }
@@ -162,14 +193,20 @@ AdvectionStats advect(const Grid& g, const Phases& ph, double dt, long step, std
   const int order = static_cast<int>(step % 3);
   for (int sweep = 0; sweep < 3; ++sweep) {
     const int d = (order + sweep) % 3;
-    const Sweep s = sweep_fluxes(g, ph, dt, d, alpha, u0);
+    const Sweep s = sweep_fluxes(g, ph, dt, d, alpha, adv);
 
     std::vector<double> next(alpha.size());
     for_cells(g, [&](const std::array<int, 3>& q) {
       std::array<int, 3> lo = q, hi = q;
       hi[d] = g.periodic(d) ? (q[d] + 1) % g.n[d] : q[d] + 1;
       const long fl = g.face(d, lo), fh = g.face(d, hi), ic = g.cell(q);
-      next[ic] = alpha[ic] - (s.F[fh] - s.F[fl]) + cflag[ic] * (s.V[fh] - s.V[fl]);
+      if (eps == nullptr) {
+        next[ic] = alpha[ic] - (s.F[fh] - s.F[fl]) + cflag[ic] * (s.V[fh] - s.V[fl]);
+        return;
+      }
+      // In units of the cell's fluid at the start (alpha = eps_old alpha / eps_old): a full cell stays full.
+      next[ic] = alpha[ic] + (cflag[ic] * (s.V[fh] - s.V[fl]) - (s.F[fh] - s.F[fl])) / (*eps->old_cell)[ic];
+      dilatation[ic] += s.V[fh] - s.V[fl];
     });
 
     for (int c = 0; c < 3; ++c) {
@@ -221,7 +258,9 @@ AdvectionStats advect(const Grid& g, const Phases& ph, double dt, long step, std
         const long f = g.face(c, q);
         mom_next[f] = mom[c][f] - (Mh * uh - Ml * ul) + mom_c[c][f] * (Vh - Vl);
         rho_next[f] = rho[c][f] - (Mh - Ml) + rho_c[c][f] * (Vh - Vl);
-        if (mixed(rho[c][f]) || mixed(rho_next[f])) bound(mom_next[f], rho_next[f], U(-1), U(0), U(1));
+        // Mixed in the phases, not in the fluid fraction (with particles rho is eps_f rho_f).
+        const double e = eps != nullptr ? eps_old_face[c][f] : 1.0;
+        if (mixed(rho[c][f] / e) || mixed(rho_next[f] / e)) bound(mom_next[f], rho_next[f], U(-1), U(0), U(1));
       });
       mom[c].swap(mom_next);
       rho[c].swap(rho_next);
@@ -230,6 +269,12 @@ AdvectionStats advect(const Grid& g, const Phases& ph, double dt, long step, std
     }
     alpha.swap(next);
   }
+  // With particles: the sweeps' dilatation terms are taken back, so each cell's paste changes only by its
+  // fluxes (the sum telescopes), and the cell's fluid changes by -div(eps u) dt = eps_new - eps_old: a full
+  // cell ends full, eps_old - div(eps u) dt = eps_new, to the continuity residual.
+  if (eps != nullptr)
+    for (std::size_t i = 0; i < alpha.size(); ++i)
+      alpha[i] = ((*eps->old_cell)[i] * alpha[i] - cflag[i] * dilatation[i]) / (*eps->new_cell)[i];
   // Boundary faces keep their velocity (walls, the open side: set by the projection), and so do blocked faces.
   for (int c = 0; c < 3; ++c)
     for_faces(g, c, [&](const std::array<int, 3>& q) {

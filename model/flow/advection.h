@@ -34,11 +34,30 @@ struct AdvectionStats {
   double max_cfl = 0.0;                     // max over faces of |u_d| dt / h_d
 };
 
+// The fluid's volume fraction over a step, when particles share the cells (model/coupling). alpha is then the
+// paste's share of the fluid, and what is transported is the paste's share of the cell, eps_f alpha:
+//   d(eps_f alpha)/dt + div(eps_f alpha u) = 0,
+// with the fluid's volume flux eps_f u through the faces, u the interstitial velocity, whose fluid continuity
+// div(eps_f u) = -(eps_new - eps_old) / dt holds over the step (the solver projects u for it before advecting).
+struct FluidFractionStep {
+  const std::vector<double>* old_cell = nullptr;  // eps_f per cell at the start of the step
+  const std::vector<double>* new_cell = nullptr;  // at the end
+  const Faces* new_face = nullptr;                // at the end, on the faces (face_fractions of new_cell)
+};
+
 // Advances alpha and the face velocities over dt. The advecting velocity is u as given (divergence-free,
 // from the last projection); on return u holds the advected velocity. `step` picks the sweep order.
 // Blocked faces (obstacle.h; u = 0 there) carry no flux and, like the box's walls, keep their velocity.
+// With eps (not nullptr): the volume-averaged transport above; the sweeps are Weymouth & Yue's on
+// eps_old alpha with the fluxes of eps_f u, their dilatation terms taken back at the end, so that the paste
+// volume sum eps_f alpha V changes only by what crosses the box's sides (to round-off, whatever the
+// continuity residual) and a full cell ends full to the projection's tolerance. Without eps: bit for bit the
+// plain transport.
 AdvectionStats advect(const Grid& g, const Phases& ph, double dt, long step, std::vector<double>& alpha, Faces& u,
-                      const FaceMask* blocked_faces = nullptr);
+                      const FaceMask* blocked_faces = nullptr, const FluidFractionStep* eps = nullptr);
+
+// Face values of a cell field: the mean of the face's two cells; a boundary face takes its one cell's.
+Faces face_means(const Grid& g, const std::vector<double>& cells);
 
 // Face densities (kg/m3) from the cell fractions: the mean of the two cells' densities; a boundary face
 // takes its one cell's.

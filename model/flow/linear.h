@@ -110,12 +110,23 @@ struct ProjectionStats {
 ProjectionStats project(const Grid& g, double dt, const Faces& rho_face, Faces& u, std::vector<double>& p, double tol,
                         int max_iterations);
 
+// The volume-averaged projection (particles in the flow, model/coupling): with the fluid's volume fraction
+// eps_f on the faces, the constraint is the fluid's continuity, div(eps_f u) = -d eps_f/dt, and the operator
+// div(eps_f (dt / rho_f) grad p). The velocity update u -= (dt / rho_f) grad p is unchanged: in the momentum
+// equation eps_f rho_f du/dt = -eps_f grad p + ... (Kloss et al. 2012 model A) the fraction cancels. The
+// stopping test is ||div(eps_f u_new) + rate|| / ||div(eps_f u*) + rate||. Absent (nullptr): eps_f = 1, the
+// plain projection, bit for bit.
+struct FluidFraction {
+  const Faces* face = nullptr;               // eps_f on the faces, in (0, 1]
+  const std::vector<double>* rate = nullptr;  // d eps_f / dt per cell (1/s); nullptr: 0
+};
+
 // The same, with the matrix pattern built once for a grid (the solver keeps one).
 class PressureOperator {
  public:
   explicit PressureOperator(const Grid& g);
   ProjectionStats project(double dt, const Faces& rho_face, Faces& u, std::vector<double>& p, double tol,
-                          int max_iterations);
+                          int max_iterations, const FluidFraction* eps = nullptr);
   // u -= (dt / rho_f) grad p on every face the projection acts on (the same discrete gradient, p = 0 outside an
   // open side): the pressure-gradient part of a step (a negative dt adds it back).
   void subtract_gradient(double dt, const Faces& rho_face, const std::vector<double>& p, Faces& u) const;
@@ -129,10 +140,12 @@ class PressureOperator {
     long face, a, b;           // the face's cells (-1: outside, an open side)
     long paa, pbb, pab, pba;   // value positions
   };
-  void fill(double dt, const Faces& rho_face);  // the operator's values (no pin: singular in a closed box)
-  // p = x (shifted to p_0 = 0 in a closed box), u = u_star - (dt / rho_f) grad p, div = div u; returns ||div||.
+  // The operator's values (no pin: singular in a closed box), weighted by eps_f on the faces if given.
+  void fill(double dt, const Faces& rho_face, const FluidFraction* eps);
+  // p = x (shifted to p_0 = 0 in a closed box), u = u_star - (dt / rho_f) grad p, div = div u (or the fluid's
+  // continuity residual, with eps); returns ||div||.
   double apply(double dt, const Faces& rho_face, const Faces& u_star, Eigen::VectorXd& x, std::vector<double>& p,
-               Faces& u, std::vector<double>& div) const;
+               Faces& u, std::vector<double>& div, const FluidFraction* eps) const;
   Grid g_;
   std::vector<Link> links_;
   bool open_ = false;
@@ -144,5 +157,7 @@ class PressureOperator {
 
 // Discrete divergence of u per cell (1/s).
 std::vector<double> divergence(const Grid& g, const Faces& u);
+// The fluid's continuity residual per cell, div(eps_f u) + d eps_f/dt (1/s); div u for eps = nullptr.
+std::vector<double> continuity_residual(const Grid& g, const Faces& u, const FluidFraction* eps);
 
 }  // namespace pastemix::flow

@@ -56,6 +56,50 @@ void FlowSolver::set_blocked_faces(FaceMask mask) {
   blocked_ = std::move(mask);
 }
 
+namespace {
+void check_fraction(const Grid& g, const std::vector<double>& eps) {
+  if (static_cast<long>(eps.size()) != g.cell_count())
+    throw std::invalid_argument(fmt::format("flow: fluid fraction has {} values for {} cells", eps.size(), g.cell_count()));
+  for (std::size_t i = 0; i < eps.size(); ++i)
+    if (!(eps[i] > 0.0 && eps[i] <= 1.0))
+      throw std::invalid_argument(fmt::format("flow: fluid fraction {} in cell {} is outside (0, 1]", eps[i], i));
+}
+}  // namespace
+
+void FlowSolver::set_fluid_fraction(std::vector<double> eps_now) {
+  check_fraction(g_, eps_now);
+  eps_ = std::move(eps_now);
+  eps_next_ = eps_;
+  pressure_ready_ = false;
+}
+
+void FlowSolver::set_next_fluid_fraction(std::vector<double> eps_end, bool with_rate) {
+  check_fraction(g_, eps_end);
+  if (eps_.empty()) eps_.assign(g_.cell_count(), 1.0);
+  eps_next_ = std::move(eps_end);
+  with_rate_ = with_rate;
+}
+
+void FlowSolver::project_continuity(double dt, const FluidFraction& vf) {
+  // The residual is measured against the larger of itself, the step's source and the last projection's start:
+  // once the solid stops, u already meets the new continuity to the last tolerance, and solving that round-off
+  // to 1e-10 of itself cannot be done (nor is it needed).
+  double r0 = 0.0, source = 0.0;
+  for (double r : continuity_residual(g_, u_, &vf)) r0 += r * r;
+  for (double r : *vf.rate) source += r * r;
+  r0 = std::sqrt(r0);
+  const double reference = std::max(std::sqrt(source), last_.projection.divergence_before);
+  if (!(r0 > s_.pressure_tolerance * reference)) return;
+  std::vector<double> phi(g_.cell_count(), 0.0);  // an impulse (Pa), not kept: the pressure is p_
+  try {
+    pressure_.project(dt, face_densities(g_, ph_, alpha_), u_, phi, s_.pressure_tolerance * std::max(reference, r0) / r0,
+                      s_.max_iterations, &vf);
+  } catch (const RuntimeFailure& e) {
+    throw RuntimeFailure(fmt::format("{} (the continuity projection before advection) in the step from t = {:.9g} s",
+                                     e.what(), t_));
+  }
+}
+
 double FlowSolver::next_time_step() const {
   double rate = 0.0;  // max |u_d| / h_d, 1/s
   for (int c = 0; c < 3; ++c)
@@ -175,10 +219,25 @@ StepStats FlowSolver::step(double dt) {
   const std::vector<double> parts = lagged ? strain_parts() : std::vector<double>{};
   std::vector<double> gamma;
   for (std::size_t c = 0; c < parts.size(); c += 4) gamma.push_back(std::sqrt(parts[c]));
-  const Faces u_lag = lagged ? u_ : Faces{};  // the velocity the shear edges' strain rates come from
   viscous_.set_blocked(&blocked_);
   pressure_.set_blocked(&blocked_);
-  st.advection = advect(g_, ph_, dt, totals_.steps, alpha_, u_, &blocked_);
+  // With particles: the fluid's continuity over this step, and u projected for it before it advects anything.
+  const bool coupled = !eps_next_.empty();
+  Faces eps_face;
+  std::vector<double> rate;
+  if (coupled) {
+    eps_face = face_means(g_, eps_next_);
+    rate.assign(g_.cell_count(), 0.0);
+    if (with_rate_)
+      for (long c = 0; c < g_.cell_count(); ++c) rate[c] = (eps_next_[c] - eps_[c]) / dt;
+    project_continuity(dt, FluidFraction{&eps_face, &rate});
+  }
+  const FluidFraction vf_rest{&eps_face, nullptr}, vf_step{&eps_face, &rate};
+  const FluidFraction* vf0 = coupled ? &vf_rest : nullptr;
+  const FluidFraction* vf1 = coupled ? &vf_step : nullptr;
+  const Faces u_lag = lagged ? u_ : Faces{};  // the velocity the shear edges' strain rates come from
+  const FluidFractionStep fs{&eps_, &eps_next_, &eps_face};
+  st.advection = advect(g_, ph_, dt, totals_.steps, alpha_, u_, &blocked_, coupled ? &fs : nullptr);
   require_finite_cells(g_, alpha_, "paste fraction", at("after advection"));
   require_finite_faces(g_, u_, "velocity", at("after advection"));
   const Faces rho = face_densities(g_, ph_, alpha_);
@@ -193,7 +252,7 @@ StepStats FlowSolver::step(double dt) {
   // pressure that balances as much of gravity as a pressure can, so a paste at rest is at rest from step 1.
   if (!pressure_ready_) {
     Faces kick = gravity_kick(dt);
-    pressure_.project(dt, rho, kick, p_, s_.pressure_tolerance, s_.max_iterations);
+    pressure_.project(dt, rho, kick, p_, s_.pressure_tolerance, s_.max_iterations, vf0);
     pressure_ready_ = true;
   }
   const Faces kick = gravity_kick(dt);
@@ -221,12 +280,13 @@ StepStats FlowSolver::step(double dt) {
   // result as projecting for the increment, and the same right-hand side (and CG iterations) as before.
   pressure_.subtract_gradient(-dt, rho, p_, u_);
   try {
-    st.projection = pressure_.project(dt, rho, u_, p_, s_.pressure_tolerance, s_.max_iterations);
+    st.projection = pressure_.project(dt, rho, u_, p_, s_.pressure_tolerance, s_.max_iterations, vf1);
   } catch (const RuntimeFailure& e) {
     throw when(e);
   }
   require_finite_cells(g_, p_, "pressure", at("after the projection"));
   require_finite_faces(g_, u_, "velocity", at("after the projection"));
+  if (coupled) eps_ = eps_next_;
   t_ += dt;
   ++totals_.steps;
   totals_.pressure_iterations += st.projection.solve.iterations;
@@ -251,7 +311,8 @@ long FlowSolver::advance_to(double t) {
 
 double FlowSolver::paste_volume() const {
   double sum = 0.0, comp = 0.0;  // Kahan
-  for (double a : alpha_) {
+  for (std::size_t i = 0; i < alpha_.size(); ++i) {
+    const double a = eps_.empty() ? alpha_[i] : eps_[i] * alpha_[i];
     const double y = a - comp, s = sum + y;
     comp = (s - sum) - y;
     sum = s;

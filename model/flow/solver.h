@@ -64,13 +64,27 @@ class FlowSolver {
   void set_blocked_faces(FaceMask mask);
   const FaceMask& blocked_faces() const { return blocked_; }
 
+  // Particles sharing the cells (model/coupling): the fluid's volume fraction eps_f = 1 - eps_s per cell, each
+  // in (0, 1] (std::invalid_argument otherwise). set_fluid_fraction sets it now (no motion implied: call it
+  // once before the first step); set_next_fluid_fraction sets it for the end of the next step, which then
+  // solves the volume-averaged equations (Kloss et al. 2012 model A; model/coupling/README.md):
+  //   d(eps_f alpha)/dt + div(eps_f alpha u) = 0,  div(eps_f u) = -d eps_f/dt,
+  //   u_new = u* - (dt / rho_f) grad p (the eps_f of model A's -eps_f grad p cancels with the mass's),
+  // u the interstitial velocity, d eps_f/dt = (eps_end - eps_now) / dt. Before advecting, the step projects u
+  // for the new continuity, so that the paste's transport and its fluid volume agree. Never called: eps_f = 1,
+  // the plain solver bit for bit. with_rate = false drops d eps_f/dt from the projection: a toy coupling, kept
+  // only to show (the `piston` test) that it displaces no paste.
+  void set_fluid_fraction(std::vector<double> eps_now);
+  void set_next_fluid_fraction(std::vector<double> eps_end, bool with_rate = true);
+  const std::vector<double>& fluid_fraction() const { return eps_; }  // empty: 1 everywhere
+
   double next_time_step() const;
   StepStats step(double dt);
   // Steps until time t (the last step shortened to land on it); returns the steps taken.
   long advance_to(double t);
 
   double time() const { return t_; }
-  double paste_volume() const;  // m3, compensated sum of alpha V
+  double paste_volume() const;  // m3, compensated sum of eps_f alpha V (eps_f = 1 without particles)
   double max_speed() const;     // m/s, max over faces of |u_c|
   const Grid& grid() const { return g_; }
   const Phases& phases() const { return ph_; }
@@ -88,6 +102,8 @@ class FlowSolver {
 
  private:
   void update_viscosity(const std::vector<double>& gamma);
+  // With particles: projects u for the step's continuity div(eps_f u) = -d eps_f/dt before the transport.
+  void project_continuity(double dt, const FluidFraction& vf);
   Faces gravity_kick(double dt) const;  // g dt on every face that is not a wall
   // Component c of the cell velocity next to cell q along d (side +-1), a wall's ghost value outside the box.
   double neighbour(const std::vector<double>& uc, int c, int d, const std::array<int, 3>& q, int side) const;  // empty: gamma_dot = 0 (a Newtonian law)
@@ -99,6 +115,8 @@ class FlowSolver {
   Faces u_;
   FaceMask blocked_;                        // walls inside the box; empty: none
   std::vector<double> p_, alpha_, mu_;      // p_: the pressure (Pa)
+  std::vector<double> eps_, eps_next_;      // fluid fraction now and at the end of the next step (empty: 1)
+  bool with_rate_ = true;
   bool pressure_ready_ = false;             // p_ balances gravity (set by the first step after the paste changes)
   double t_ = 0.0;
   StepStats last_;

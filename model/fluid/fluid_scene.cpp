@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "base/error.h"
+#include "model/coupling/kernel.h"
 #include "model/laws/registry.h"
 
 namespace pastemix::model::fluid {
@@ -107,6 +108,48 @@ void read_drag_law(const Params& f, const std::string& scene_path, FluidRegion& 
   });
 }
 
+// [[fluid]] dynamics (fluid_scene.h): "at_rest" (the default, nothing more is read) or "flow", whose grid and
+// kernel are checked against the region and the domain. "flow" is not yet coupled into the engine (issue 18:
+// the momentum exchange comes first), so a valid "flow" region stops the scene here, saying so: it never runs
+// at rest in its place.
+void read_dynamics(const Params& f, const FluidRegion& r, const Vec3& domain_max) {
+  const bool flow = f.choice_or("dynamics", {"at_rest", "flow"}, "at_rest") == "flow";
+  if (!flow) {
+    for (const char* key : {"cell", "top", "kernel_width"})
+      if (f.has(key)) f.fail(key, fmt::format("{} is a key of dynamics = \"flow\" (this region is at rest)", key));
+    return;
+  }
+  if (!f.has("cell"))
+    f.fail("dynamics", "dynamics = \"flow\" needs the flow grid: cell = SIZE (m, cubic cells that tile the region)");
+  const double cell = f.number("cell", Range::positive);
+  const double top = f.number_or("top", domain_max.z, Range::any);
+  if (top > domain_max.z)
+    f.fail("top", fmt::format("top = {:g} m is above the [domain] box (z up to {:g} m): the flow box would reach "
+                              "outside the domain",
+                              top, domain_max.z));
+  if (!(top > r.z_surface0))
+    f.fail("top", fmt::format("top = {:g} m must lie above the surface ({:g} m): the flow box holds the air above "
+                              "the paste",
+                              top, r.z_surface0));
+  // The grid must tile the region: a box that is not a whole number of cells would move its walls.
+  auto tiles = [&](const char* key, const char* what, double length) {
+    const double n = length / cell;
+    if (std::abs(n - std::round(n)) > 1e-9 * n || std::round(n) < 1.0)
+      f.fail(key, fmt::format("the region's {} ({:g} m) is not a whole number of {:g} m cells ({:.6g})", what, length,
+                              cell, n));
+  };
+  tiles("cell", "x extent", r.x_max - r.x_min);
+  tiles("cell", "y extent", r.y_max - r.y_min);
+  tiles(f.has("top") ? "top" : "cell", "height from bottom to top", top - r.z_bottom);
+  const double c = f.number_or("kernel_width", coupling::kDefaultWidthFactor, Range::positive);
+  if (c < coupling::kMinWidthFactor)
+    f.fail("kernel_width", fmt::format("kernel_width = {:g} is below its minimum {} (model/coupling/kernel.h: a "
+                                       "narrower kernel puts a single sphere's solid fraction above 1)",
+                                       c, coupling::kMinWidthFactor));
+  f.fail("dynamics", "dynamics = \"flow\" is read and checked, but not yet coupled into the engine (issue 18: the "
+                     "momentum exchange comes first); use \"at_rest\"");
+}
+
 }  // namespace
 
 drag::DragCurve read_chosen_curve(const std::string& parameters_toml, const std::string& wanted) {
@@ -193,6 +236,7 @@ std::vector<FluidRegion> read_fluid_regions(const Params& root, const std::strin
     r.collective_interval = f.number_or("collective_interval", r.collective_interval, Range::positive);
     if (r.collective && r.yield_stress() <= 0.0)
       f.fail("collective", "the bearing-capacity rule needs a yield stress (a drag law with yield_stress > 0)");
+    read_dynamics(f, r, domain_max);
     out.push_back(std::move(r));
   }
   return out;

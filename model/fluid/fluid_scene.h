@@ -23,9 +23,19 @@
 //   collective = "bearing_capacity"      # or "none" (default): touching spheres share the paste's bearing
 //                                        # capacity (collective.h); needs yield_stress > 0
 //   collective_interval = 5e-4           # s, optional: simulated time between two cluster updates
+//   dynamics = "at_rest"                 # default: the paste at rest (this file's model); or "flow": the
+//                                        # region's paste solved by the flow solver, coupled both ways (issue
+//                                        # 18), with its keys:
+//   cell = 0.005                         #   m, the flow grid's cubic cells (required), tiling the region
+//   top = 0.2                            #   m, top of the flow box (air above the surface), default the domain's
+//   kernel_width = 2.0                   #   c of the particles' kernels (model/coupling/kernel.h), >= 1.2091
+//                                        # "flow" is read and checked but not yet coupled into the engine: a
+//                                        # valid "flow" region is an InputError saying so (exit 2)
 //
 // Checks: positive density and viscosities, non-negative yield stress, extents min < max, surface above the
-// bottom, a known curve with admissible coefficients (exactly one of curve / curve_from).
+// bottom, a known curve with admissible coefficients (exactly one of curve / curve_from); with dynamics =
+// "flow": a grid (cell), a top inside the domain and above the surface, cells that tile the region, a kernel
+// width at or above its minimum.
 #pragma once
 
 #include <optional>

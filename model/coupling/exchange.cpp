@@ -1,0 +1,208 @@
+// SPDX-License-Identifier: MIT
+#include "model/coupling/exchange.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "base/error.h"
+#include "model/coupling/kernel.h"
+
+namespace pastemix::coupling {
+
+namespace {
+
+// A face of component c on a wall (a bounded axis's end): its velocity is fixed, it takes no reaction.
+bool wall_face(const flow::Grid& g, int c, long f) {
+  if (g.periodic(c)) return false;
+  const auto fd = g.face_dims(c);
+  const long q0 = f % fd[0], q1 = (f / fd[0]) % fd[1], q2 = f / (static_cast<long>(fd[0]) * fd[1]);
+  const long along = c == 0 ? q0 : (c == 1 ? q1 : q2);
+  return along == 0 || along == g.n[c];
+}
+
+double dot(const std::vector<double>& a, const std::vector<double>& b) {
+  double s = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) s += a[i] * b[i];
+  return s;
+}
+
+}  // namespace
+
+Exchange::Exchange(const flow::Grid& g, double width_factor) : g_(g), c_(width_factor) {
+  g_.check();
+  if (!(width_factor >= kMinWidthFactor))
+    throw std::invalid_argument(fmt::format("coupling: kernel width factor {} below its minimum {}", width_factor, kMinWidthFactor));
+}
+
+std::array<std::vector<Exchange::Row>, 3> Exchange::rows(const ExchangeParticles& p, const flow::Faces& face_mass,
+                                                          const flow::Faces* paste_mask) const {
+  std::array<std::vector<Row>, 3> out;
+  for (int c = 0; c < 3; ++c) out[c].resize(p.centre.size());
+  std::array<std::vector<std::pair<long, double>>, 3> acc;
+  for (std::size_t i = 0; i < p.centre.size(); ++i) {
+    const Stencil s = stencil(g_, p.centre[i], p.diameter[i], c_);
+    for (auto& a : acc) a.clear();
+    for (const auto& [k, wk] : s.axis[2])
+      for (const auto& [j, wj] : s.axis[1])
+        for (const auto& [ii, wi] : s.axis[0]) {
+          const std::array<int, 3> q{ii, j, k};
+          const double half = 0.5 * wi * wj * wk;
+          for (int c = 0; c < 3; ++c) {
+            std::array<int, 3> hi = q;
+            hi[c] = g_.periodic(c) ? (q[c] + 1) % g_.n[c] : q[c] + 1;
+            acc[c].emplace_back(g_.face(c, q), half);
+            acc[c].emplace_back(g_.face(c, hi), half);
+          }
+        }
+    for (int c = 0; c < 3; ++c) {
+      std::sort(acc[c].begin(), acc[c].end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+      Row& r = out[c][i];
+      double sum = 0.0;
+      for (std::size_t e = 0; e < acc[c].size(); ++e) {
+        const long f = acc[c][e].first;
+        double w = acc[c][e].second;
+        while (e + 1 < acc[c].size() && acc[c][e + 1].first == f) w += acc[c][++e].second;
+        if (wall_face(g_, c, f) || !(face_mass[c][f] > 0.0)) continue;
+        if (paste_mask != nullptr) w *= std::clamp((*paste_mask)[c][f], 0.0, 1.0);
+        if (w == 0.0) continue;
+        r.face.push_back(f);
+        r.w.push_back(w);
+        sum += w;
+      }
+      if (sum > 0.0)
+        for (double& w : r.w) w /= sum;
+    }
+  }
+  return out;
+}
+
+double Exchange::Row::at(const std::vector<double>& field) const {
+  double s = 0.0;
+  for (std::size_t e = 0; e < face.size(); ++e) s += w[e] * field[face[e]];
+  return s;
+}
+
+void Exchange::Row::spread(double amount, std::vector<double>& field) const {
+  for (std::size_t e = 0; e < face.size(); ++e) field[face[e]] += w[e] * amount;
+}
+
+ExchangeStats Exchange::apply(double dt, const ExchangeParticles& p, std::vector<std::array<double, 3>>& v,
+                              flow::Faces& u, const flow::Faces& face_mass, const flow::Faces* paste_mask,
+                              std::vector<std::array<double, 3>>& impulse) const {
+  const std::size_t n = p.centre.size();
+  if (p.diameter.size() != n || p.mass.size() != n || p.beta.size() != n || p.yield_force.size() != n || v.size() != n)
+    throw std::invalid_argument("coupling exchange: particle arrays differ in length");
+  for (std::size_t i = 0; i < n; ++i)
+    if (!(p.mass[i] > 0.0) || !(p.beta[i] >= 0.0) || !(p.yield_force[i] >= 0.0) || !std::isfinite(p.beta[i]) ||
+        !std::isfinite(p.yield_force[i]))
+      throw std::invalid_argument(fmt::format("coupling exchange: particle {}: mass {} kg, beta {} kg/s, yield force {} N "
+                                              "(need mass > 0, beta >= 0, yield force >= 0, finite)",
+                                              i, p.mass[i], p.beta[i], p.yield_force[i]));
+  const Rows W = rows(p, face_mass, paste_mask);
+  ExchangeStats st;
+  impulse.assign(n, {0.0, 0.0, 0.0});
+  yield_part(dt, p, W, v, u, face_mass, impulse, st);
+  for (int c = 0; c < 3; ++c) drag_part(c, dt, p, W, v, u[c], face_mass[c], impulse, st);
+  return st;
+}
+
+void Exchange::yield_part(double dt, const ExchangeParticles& p, const Rows& W, std::vector<std::array<double, 3>>& v,
+                          flow::Faces& u, const flow::Faces& face_mass, std::vector<std::array<double, 3>>& impulse,
+                          ExchangeStats& st) {
+  flow::Faces reaction;  // N s on the faces, applied after all particles: the fluid stays frozen meanwhile
+  for (int c = 0; c < 3; ++c) reaction[c].assign(u[c].size(), 0.0);
+  for (std::size_t i = 0; i < p.centre.size(); ++i) {
+    // A particle with no paste face in its support has no yield part.
+    if (p.yield_force[i] == 0.0 || W[0][i].face.empty() || W[1][i].face.empty() || W[2][i].face.empty()) continue;
+    std::array<double, 3> w{};
+    for (int c = 0; c < 3; ++c) w[c] = v[i][c] - W[c][i].at(u[c]);
+    const double speed = std::hypot(w[0], w[1], w[2]);
+    if (speed == 0.0) continue;
+    const double bound = p.yield_force[i] * dt;  // N s
+    const bool stick = p.mass[i] * speed <= bound;
+    const double scale = stick ? p.mass[i] : bound / speed;
+    st.stuck += stick ? 1 : 0;
+    for (int c = 0; c < 3; ++c) {
+      const double J = -scale * w[c];
+      impulse[i][c] += J;
+      v[i][c] += J / p.mass[i];
+      W[c][i].spread(-J, reaction[c]);
+    }
+  }
+  for (int c = 0; c < 3; ++c)
+    for (std::size_t f = 0; f < u[c].size(); ++f)
+      if (reaction[c][f] != 0.0) u[c][f] += reaction[c][f] / face_mass[c][f];
+}
+
+namespace {
+
+// Jacobi-preconditioned CG for A x = b (A SPD, applied by apply_A), from the given x; returns the iterations
+// and sets `rel` to ||b - A x|| / ||b|| at exit.
+template <class Apply>
+int conjugate_gradients(Apply&& apply_A, const std::vector<double>& b, const std::vector<double>& diag,
+                        std::vector<double>& x, double tol, int max_iterations, double& rel) {
+  const std::size_t F = b.size();
+  std::vector<double> r(F), z(F), d(F), q(F);
+  apply_A(x, q);
+  for (std::size_t f = 0; f < F; ++f) r[f] = b[f] - q[f], z[f] = r[f] / diag[f], d[f] = z[f];
+  const double bnorm = std::sqrt(dot(b, b));
+  double rz = dot(r, z);
+  rel = bnorm > 0.0 ? std::sqrt(dot(r, r)) / bnorm : 0.0;
+  int it = 0;
+  for (; it < max_iterations && rel > tol; ++it) {
+    apply_A(d, q);
+    const double a = rz / dot(d, q);
+    for (std::size_t f = 0; f < F; ++f) x[f] += a * d[f], r[f] -= a * q[f], z[f] = r[f] / diag[f];
+    const double rz1 = dot(r, z);
+    for (std::size_t f = 0; f < F; ++f) d[f] = z[f] + (rz1 / rz) * d[f];
+    rz = rz1;
+    rel = std::sqrt(dot(r, r)) / bnorm;
+  }
+  return it;
+}
+
+}  // namespace
+
+void Exchange::drag_part(int c, double dt, const ExchangeParticles& p, const Rows& W,
+                         std::vector<std::array<double, 3>>& v, std::vector<double>& u, const std::vector<double>& M,
+                         std::vector<std::array<double, 3>>& impulse, ExchangeStats& st) const {
+  const std::size_t n = p.centre.size(), F = u.size();
+  std::vector<double> B(n);  // kg/s: beta with the particle eliminated, beta m / (m + dt beta)
+  for (std::size_t i = 0; i < n; ++i) B[i] = p.beta[i] * p.mass[i] / (p.mass[i] + dt * p.beta[i]);
+  auto mass_of = [&](std::size_t f) { return M[f] > 0.0 ? M[f] : 1.0; };  // faces no particle reaches
+  auto apply_A = [&](const std::vector<double>& x, std::vector<double>& y) {
+    for (std::size_t f = 0; f < F; ++f) y[f] = mass_of(f) * x[f];
+    for (std::size_t i = 0; i < n; ++i)
+      if (B[i] > 0.0) W[c][i].spread(dt * B[i] * W[c][i].at(x), y);
+  };
+  std::vector<double> rhs(F), diag(F), x = u;
+  for (std::size_t f = 0; f < F; ++f) rhs[f] = mass_of(f) * u[f], diag[f] = mass_of(f);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (B[i] == 0.0) continue;
+    W[c][i].spread(dt * B[i] * v[i][c], rhs);
+    for (std::size_t e = 0; e < W[c][i].face.size(); ++e) diag[W[c][i].face[e]] += dt * B[i] * W[c][i].w[e] * W[c][i].w[e];
+  }
+  double rel = 0.0;
+  const int it = conjugate_gradients(apply_A, rhs, diag, x, tolerance, max_iterations, rel);
+  if (rel > tolerance)
+    throw RuntimeFailure(fmt::format("coupling exchange: the implicit drag solve (component {}) did not converge: "
+                                     "relative residual {:.3g} after {} iterations", c, rel, it));
+  st.iterations += it;
+  st.relative_residual = std::max(st.relative_residual, rel);
+  // The particles' impulses decide; the faces take exactly their opposite.
+  std::vector<double> reaction(F, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (B[i] == 0.0 || W[c][i].face.empty()) continue;
+    const double J = dt * B[i] * (W[c][i].at(x) - v[i][c]);
+    impulse[i][c] += J;
+    v[i][c] += J / p.mass[i];
+    W[c][i].spread(-J, reaction);
+  }
+  for (std::size_t f = 0; f < F; ++f)
+    if (reaction[f] != 0.0) u[f] += reaction[f] / M[f];
+}
+
+}  // namespace pastemix::coupling

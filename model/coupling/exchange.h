@@ -1,0 +1,85 @@
+// SPDX-License-Identifier: MIT
+// The momentum exchange between particles and the fluid's MAC faces over one coupling step (issue 18, layer 3):
+// the drag law's yield part against a frozen fluid velocity, then its velocity-dependent part implicit in both
+// phases. Every impulse a particle gets, the faces get with the opposite sign through the same weights, so
+// particles + fluid keep their momentum to round-off whatever the step (test).
+//
+// Weights. A particle's velocity of the fluid is u_p = sum_f W_pf u_f, W the kernel's face weights
+// (kernel.h: interpolate_velocity) restricted to the faces that may take a reaction, renormalised to sum 1:
+// not a wall face (its velocity is fixed), a positive fluid mass, and with a paste mask (the faces' paste
+// fraction) multiplying the weights, so that air faces are masked from the paste drag (an explicit reaction on a
+// near-empty face would kick it by many times its mass). A particle whose support holds no such face gets no
+// paste drag (its W row is 0). The reaction on the faces is W^T J: adjoint, so sum_f (W^T J)_f = J.
+//
+// 1. Yield part (bounded, static-friction-like), against the fluid velocity at the start u^n:
+//    w = v_p - u_p(u^n); J_y = -m w if m |w| <= F_y dt (the particle sticks to the paste: v_p = u_p(u^n)),
+//    else J_y = -F_y dt w / |w|. The faces take -W^T J_y.
+// 2. Velocity-dependent part, F = beta (u_p - v_p) (beta in kg/s: the drag law's linear coefficient at the
+//    current relative speed), implicit in both phases: with v_p' = (m v_p* + dt beta u_p') / (m + dt beta)
+//    eliminated (the exact elimination through the kernel, not per cell), the faces solve
+//      (M + dt W^T B W) u' = M u* + dt W^T B v*,   B = diag(beta m / (m + dt beta)),
+//    per component by CG (Jacobi; SPD: M > 0 on every face that takes a reaction). Then
+//    J_d = dt B (W u' - v*) on each particle, and the faces are set to u* - M^{-1} W^T J_d: the CG solution
+//    only decides J_d, the momentum bookkeeping is exact. Stable for any dt beta / m and dt beta / M (test:
+//    1e6).
+#pragma once
+
+#include <array>
+#include <span>
+#include <vector>
+
+#include "model/flow/advection.h"
+#include "model/flow/grid.h"
+
+namespace pastemix::coupling {
+
+struct ExchangeParticles {
+  std::span<const std::array<double, 3>> centre;  // m
+  std::span<const double> diameter;               // m
+  std::span<const double> mass;                   // kg
+  std::span<const double> beta;                   // kg/s, velocity-dependent drag coefficient (>= 0)
+  std::span<const double> yield_force;            // N, the bounded yield part of the drag (>= 0)
+};
+
+struct ExchangeStats {
+  int iterations = 0;              // CG, summed over the components
+  double relative_residual = 0.0;  // worst component's, at exit
+  int stuck = 0;                   // particles that stuck in the yield part
+};
+
+class Exchange {
+ public:
+  Exchange(const flow::Grid& g, double width_factor);
+  // v (m/s, in/out): the particles' velocities; u (m/s, in/out): the faces'; face_mass (kg): the fluid's mass
+  // in each face's control volume (eps_f rho_f V); paste_mask: nullptr, or the faces' paste fraction.
+  // impulse (out, N s): what each particle received. Throws std::invalid_argument on sizes or negative inputs,
+  // RuntimeFailure if CG does not converge.
+  ExchangeStats apply(double dt, const ExchangeParticles& p, std::vector<std::array<double, 3>>& v, flow::Faces& u,
+                      const flow::Faces& face_mass, const flow::Faces* paste_mask,
+                      std::vector<std::array<double, 3>>& impulse) const;
+
+  double tolerance = 1e-13;  // CG, relative residual
+  int max_iterations = 2000;
+
+ private:
+  struct Row {  // one particle's faces and weights for one component
+    std::vector<long> face;
+    std::vector<double> w;
+    double at(const std::vector<double>& field) const;               // sum_f w_f field_f
+    void spread(double amount, std::vector<double>& field) const;    // field_f += w_f amount
+  };
+  using Rows = std::array<std::vector<Row>, 3>;
+  Rows rows(const ExchangeParticles& p, const flow::Faces& face_mass, const flow::Faces* paste_mask) const;
+  // Stage 1 (yield, against the frozen u) and stage 2 for one component (implicit drag); both update v, u and
+  // impulse, and give the faces exactly the opposite of what the particles get.
+  static void yield_part(double dt, const ExchangeParticles& p, const Rows& W, std::vector<std::array<double, 3>>& v,
+                         flow::Faces& u, const flow::Faces& face_mass, std::vector<std::array<double, 3>>& impulse,
+                         ExchangeStats& st);
+  void drag_part(int c, double dt, const ExchangeParticles& p, const Rows& W, std::vector<std::array<double, 3>>& v,
+                 std::vector<double>& u, const std::vector<double>& M, std::vector<std::array<double, 3>>& impulse,
+                 ExchangeStats& st) const;
+  flow::Grid g_;
+  double c_;
+};
+
+}  // namespace pastemix::coupling

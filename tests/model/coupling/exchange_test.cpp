@@ -1,0 +1,209 @@
+// SPDX-License-Identifier: MIT
+// The momentum exchange (model/coupling/exchange.h): one particle against the closed form of the implicit
+// two-phase step at any stiffness, particles + fluid gaining exactly the gravity impulse in a periodic box (the
+// drag on the particles = -(force on the fluid) to round-off), the yield stick, walls and air masked.
+#include "model/coupling/exchange.h"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+#include "model/coupling/kernel.h"
+
+using namespace pastemix;
+using coupling::Exchange;
+using coupling::ExchangeParticles;
+
+namespace {
+
+flow::Grid periodic_box() {
+  flow::Grid g;
+  g.n = {8, 6, 10};
+  g.h = {0.01, 0.01, 0.01};
+  for (auto& b : g.bc) b.type = flow::BoundaryType::periodic;
+  return g;
+}
+
+flow::Faces faces(const flow::Grid& g, double value) {
+  flow::Faces f;
+  for (int c = 0; c < 3; ++c) f[c].assign(g.face_count(c), value);
+  return f;
+}
+
+struct Cloud {
+  std::vector<std::array<double, 3>> x, v;
+  std::vector<double> d, m, beta, yield;
+  ExchangeParticles view() const { return {x, d, m, beta, yield}; }
+};
+
+double momentum(const Cloud& p, const flow::Faces& u, const flow::Faces& M, int c) {
+  double s = 0.0;
+  for (std::size_t i = 0; i < p.m.size(); ++i) s += p.m[i] * p.v[i][c];
+  for (std::size_t f = 0; f < u[c].size(); ++f) s += M[c][f] * u[c][f];
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("exchange: one particle's drag impulse is the implicit two-phase closed form, for dt beta / m from 1e-2 to 1e6") {
+  const flow::Grid g = periodic_box();
+  const double dt = 1e-3, rho = 1.2;  // a light fluid (air): its faces are lighter than the particle
+  const flow::Faces M = faces(g, rho * g.cell_volume());
+  for (double stiff : {1e-2, 1.0, 1e6}) {
+    Cloud p;
+    p.x = {{0.033, 0.027, 0.051}};
+    p.d = {0.012};
+    p.m = {2760.0 * 3.14159 / 6.0 * 1.728e-6};
+    p.beta = {stiff * p.m[0] / dt};
+    p.yield = {0.0};
+    p.v = {{0.3, -0.2, -1.0}};
+    flow::Faces u = faces(g, 0.0);
+    for (std::size_t f = 0; f < u[0].size(); ++f) u[0][f] = 0.05;
+    // s = sum_f W_pf^2 / M_f from the kernel's own face spread (deposit_faces of a unit amount).
+    const coupling::Stencil st = coupling::stencil(g, p.x[0], p.d[0], 2.0);
+    std::array<double, 3> s{};
+    for (int c = 0; c < 3; ++c) {
+      flow::Faces w = faces(g, 0.0);
+      std::array<double, 3> unit{};
+      unit[c] = 1.0;
+      coupling::deposit_faces(g, st, unit, w);
+      for (std::size_t f = 0; f < w[c].size(); ++f) s[c] += w[c][f] * w[c][f] / M[c][f];
+    }
+    const std::array<double, 3> up = coupling::interpolate_velocity(g, st, u), v0 = p.v[0];
+    std::vector<std::array<double, 3>> J;
+    std::array<double, 3> before{};
+    for (int c = 0; c < 3; ++c) before[c] = momentum(p, u, M, c);
+    Exchange ex(g, 2.0);
+    ex.apply(dt, p.view(), p.v, u, M, nullptr, J);
+    for (int c = 0; c < 3; ++c) {
+      const double b = p.beta[0];
+      const double expected = dt * b * (up[c] - v0[c]) / (1.0 + dt * b * (1.0 / p.m[0] + s[c]));
+      INFO("dt beta / m = " << stiff << ", component " << c);
+      CHECK(J[0][c] == doctest::Approx(expected).epsilon(1e-10));
+      CHECK(std::abs(momentum(p, u, M, c) - before[c]) <= 1e-15 * (std::abs(before[c]) + p.m[0]));
+      // No overshoot: the relative velocity keeps its sign and shrinks (implicit: any stiffness is stable).
+      const double w0 = v0[c] - up[c], w1 = p.v[0][c] - coupling::interpolate_velocity(g, st, u)[c];
+      CHECK(w1 * w0 >= 0.0);
+      CHECK(std::abs(w1) <= std::abs(w0));
+    }
+  }
+}
+
+TEST_CASE("exchange: in a periodic box particles + fluid gain exactly the gravity impulse, drag = -(force on the fluid)") {
+  const flow::Grid g = periodic_box();
+  std::mt19937_64 rng(21);
+  std::uniform_real_distribution<double> U(0.0, 1.0);
+  Cloud p;
+  for (int i = 0; i < 40; ++i) {
+    const double d = 1.18e-3 * std::pow(30.0 / 1.18, U(rng));
+    p.x.push_back({0.08 * U(rng), 0.06 * U(rng), 0.1 * U(rng)});
+    p.d.push_back(d);
+    p.m.push_back(2760.0 * 3.14159265358979 / 6.0 * d * d * d);
+    p.beta.push_back(p.m.back() * std::pow(10.0, 8.0 * U(rng) - 1.0));  // relaxation times 1e-7 to 10 s
+    p.yield.push_back(i % 3 == 0 ? 0.0 : 50.0 * d * d);                 // ~ (pi d / 2)^2 tau_y at tau_y ~ 20 Pa
+    p.v.push_back({U(rng) - 0.5, U(rng) - 0.5, -U(rng)});
+  }
+  flow::Faces M = faces(g, 0.0), u = faces(g, 0.0);
+  for (int c = 0; c < 3; ++c)
+    for (std::size_t f = 0; f < M[c].size(); ++f) M[c][f] = (U(rng) < 0.2 ? 1.2 : 1843.0) * g.cell_volume();
+  const double dt = 1e-3, gz = -9.81;
+  double total_mass = 0.0;
+  for (double m : p.m) total_mass += m;
+  for (double m : M[2]) total_mass += m;
+  const double p0 = momentum(p, u, M, 2), px0 = momentum(p, u, M, 0);
+  Exchange ex(g, 2.0);
+  std::vector<std::array<double, 3>> J;
+  double worst_balance = 0.0;
+  int stuck = 0;
+  long iterations = 0;
+  const int steps = 30;
+  for (int n = 0; n < steps; ++n) {
+    for (auto& v : p.v) v[2] += gz * dt;
+    for (double& w : u[2]) w += gz * dt;
+    const flow::Faces u_before = u;
+    const coupling::ExchangeStats st = ex.apply(dt, p.view(), p.v, u, M, nullptr, J);
+    stuck += st.stuck;
+    iterations += st.iterations;
+    // The particles' impulse against the fluid's momentum change, per component.
+    for (int c = 0; c < 3; ++c) {
+      double particles = 0.0, fluid = 0.0, scale = 0.0;
+      for (const auto& j : J) particles += j[c], scale += std::abs(j[c]);
+      for (std::size_t f = 0; f < u[c].size(); ++f) fluid += M[c][f] * (u[c][f] - u_before[c][f]);
+      if (scale > 0.0) worst_balance = std::max(worst_balance, std::abs(particles + fluid) / scale);
+    }
+  }
+  const double gained = momentum(p, u, M, 2) - p0, expected = total_mass * gz * dt * steps;
+  const double err = std::abs(gained - expected) / std::abs(expected);
+  std::printf("exchange momentum: 40 particles (dt / tau 1e-4 to 1e4), %d steps: gravity impulse relative error %.3g, "
+              "|drag on particles + force on fluid| / sum |drag| <= %.3g, x momentum drift %.3g N s, %d stick events, "
+              "%.1f CG iterations per component solve\n",
+              steps, err, worst_balance, momentum(p, u, M, 0) - px0, stuck, static_cast<double>(iterations) / (3.0 * steps));
+  CHECK(err <= 1e-10);
+  CHECK(worst_balance <= 1e-12);
+  CHECK(std::abs(momentum(p, u, M, 0) - px0) <= 1e-14 * total_mass);
+  CHECK(stuck > 0);  // the yield part was exercised
+}
+
+TEST_CASE("exchange: the yield part sticks a slow particle to the frozen fluid and takes exactly F_y dt from a fast one") {
+  const flow::Grid g = periodic_box();
+  const flow::Faces M = faces(g, 1843.0 * g.cell_volume());
+  flow::Faces u = faces(g, 0.0);
+  for (std::size_t f = 0; f < u[2].size(); ++f) u[2][f] = -0.01 * (1.0 + 0.1 * static_cast<double>(f % 7));
+  const double dt = 1e-4, m = 0.01, Fy = 2.0;  // F_y dt / m = 0.02 m/s
+  Cloud p;
+  p.x = {{0.041, 0.03, 0.05}, {0.02, 0.02, 0.02}};
+  p.d = {0.01, 0.01};
+  p.m = {m, m};
+  p.beta = {0.0, 0.0};
+  p.yield = {Fy, Fy};
+  const auto s0 = coupling::stencil(g, p.x[0], 0.01, 2.0), s1 = coupling::stencil(g, p.x[1], 0.01, 2.0);
+  const auto u0 = coupling::interpolate_velocity(g, s0, u), u1 = coupling::interpolate_velocity(g, s1, u);
+  p.v = {{u0[0] + 0.006, u0[1], u0[2] - 0.008}, {u1[0], u1[1] + 1.0, u1[2]}};  // |w| = 0.01 < 0.02; 1 m/s
+  std::vector<std::array<double, 3>> J;
+  const auto st = Exchange(g, 2.0).apply(dt, p.view(), p.v, u, M, nullptr, J);
+  CHECK(st.stuck == 1);
+  for (int c = 0; c < 3; ++c) CHECK(p.v[0][c] == doctest::Approx(u0[c]).epsilon(1e-13));
+  CHECK(J[1][1] == doctest::Approx(-Fy * dt).epsilon(1e-13));
+  CHECK(p.v[1][1] == doctest::Approx(u1[1] + 1.0 - Fy * dt / m).epsilon(1e-13));
+}
+
+TEST_CASE("exchange: wall faces and masked (air) faces take no reaction, a particle in air gets no paste drag") {
+  flow::Grid g = periodic_box();
+  for (auto& b : g.bc) b.type = flow::BoundaryType::no_slip;
+  const flow::Faces M = faces(g, 1843.0 * g.cell_volume());
+  flow::Faces mask = faces(g, 1.0);
+  for (int c = 0; c < 3; ++c) {
+    const auto fd = g.face_dims(c);
+    for (int k = 0; k < fd[2]; ++k)
+      for (int j = 0; j < fd[1]; ++j)
+        for (int i = 0; i < fd[0]; ++i)
+          if (k >= (c == 2 ? 6 : 5)) mask[c][g.face(c, {i, j, k})] = 0.0;  // air above z = 5 cm
+  }
+  Cloud p;
+  p.x = {{0.005, 0.005, 0.005}, {0.04, 0.03, 0.085}};  // touching three walls; in the air
+  p.d = {0.01, 0.01};
+  p.m = {0.001, 0.001};
+  p.beta = {5.0, 5.0};
+  p.yield = {1.0, 1.0};
+  p.v = {{1.0, 1.0, -1.0}, {0.0, 0.0, -1.0}};
+  flow::Faces u = faces(g, 0.0);
+  std::vector<std::array<double, 3>> J;
+  Exchange(g, 2.0).apply(1e-3, p.view(), p.v, u, M, &mask, J);
+  for (int c = 0; c < 3; ++c) {
+    double fluid = 0.0;
+    const auto fd = g.face_dims(c);
+    for (int k = 0; k < fd[2]; ++k)
+      for (int j = 0; j < fd[1]; ++j)
+        for (int i = 0; i < fd[0]; ++i) {
+          const long f = g.face(c, {i, j, k});
+          const std::array<int, 3> q{i, j, k};
+          if (q[c] == 0 || q[c] == g.n[c] || mask[c][f] == 0.0) CHECK(u[c][f] == 0.0);
+          fluid += M[c][f] * u[c][f];
+        }
+    CHECK(J[0][c] != 0.0);
+    CHECK(std::abs(fluid + J[0][c]) <= 1e-15);  // the corner particle's reaction stays in the paste
+    CHECK(J[1][c] == 0.0);                      // no paste face in its support
+  }
+}

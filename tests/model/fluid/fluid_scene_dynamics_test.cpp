@@ -1,0 +1,88 @@
+// SPDX-License-Identifier: MIT
+// [[fluid]] dynamics (model/fluid/fluid_scene.h): "at_rest" is the default and reads nothing more; "flow" needs
+// a grid that tiles the region, a top inside the domain and a kernel width at or above its minimum, and, not
+// yet coupled into the engine, stops the scene saying so. Every error names the scene file, its line and key.
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include <doctest/doctest.h>
+#include <fmt/format.h>
+
+#include "base/error.h"
+#include "model/scene.h"
+#include "tests/run_command.h"
+
+using namespace pastemix;
+using namespace pastemix::model;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Dir {
+  fs::path path = fs::temp_directory_path() / fmt::format("pastemix_dynamics_{}", static_cast<long>(::getpid()));
+  Dir() { fs::create_directories(path); }
+  ~Dir() { fs::remove_all(path); }
+};
+
+std::string with(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  REQUIRE(at != std::string::npos);
+  return text.replace(at, from.size(), to);
+}
+
+// The tiny mixing scene (domain z up to 0.35 m, region 6 x 6 cm, surface 6 cm) with the paste's values typed in.
+std::string tiny_scene() {
+  std::ifstream in(test::source_path("tests/app/study/data/rheology_tiny.toml"));
+  std::stringstream s;
+  s << in.rdbuf();
+  return with(with(s.str(), "rheology_from = \"../../../../out/lab/parameters.toml\"",
+                   "density = 1789.4\nyield_stress = 46.0\nplastic_viscosity = 0.2"),
+              "solids_fraction = 0.725", "solids_fraction = 0.725\n#DYN");
+}
+
+std::string error_of(const Dir& d, const std::string& text) {
+  std::ofstream(d.path / "scene.toml") << text;
+  try {
+    load_scene(d.path / "scene.toml");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// The error names the scene and a line, and says `what`.
+void says(const std::string& e, const std::string& what) {
+  CHECK_MESSAGE(std::regex_search(e, std::regex("scene\\.toml:[0-9]+")), e);
+  CHECK_MESSAGE(e.find(what) != std::string::npos, e);
+}
+
+}  // namespace
+
+TEST_CASE("fluid scene: dynamics is at_rest by default and when named, and reads no flow keys then") {
+  Dir d;
+  CHECK(error_of(d, tiny_scene()).empty());
+  CHECK(error_of(d, with(tiny_scene(), "#DYN", "dynamics = \"at_rest\"")).empty());
+  says(error_of(d, with(tiny_scene(), "#DYN", "cell = 0.005")), "is a key of dynamics = \"flow\"");
+  says(error_of(d, with(tiny_scene(), "#DYN", "dynamics = \"moving\"")), "dynamics");
+}
+
+TEST_CASE("fluid scene: dynamics = flow without a grid, with a kernel below its minimum, or not fitting the domain") {
+  Dir d;
+  auto flow = [&](const std::string& keys) { return error_of(d, with(tiny_scene(), "#DYN", "dynamics = \"flow\"\n" + keys)); };
+  says(flow(""), "needs the flow grid: cell = SIZE");
+  says(flow("cell = 0.005\nkernel_width = 1.0"), "kernel_width = 1 is below its minimum 1.2091");
+  says(flow("cell = 0.005\ntop = 0.4"), "top = 0.4 m is above the [domain] box");
+  says(flow("cell = 0.005\ntop = 0.05"), "must lie above the surface");
+  says(flow("cell = 0.007"), "x extent (0.06 m) is not a whole number of 0.007 m cells");
+  says(flow("cell = 0.005\ntop = 0.1525"), "height from bottom to top (0.1525 m) is not a whole number");
+  // The region itself reaching outside the domain (the existing check, which "flow" relies on).
+  says(error_of(d, with(with(tiny_scene(), "#DYN", "dynamics = \"flow\"\ncell = 0.005"), "x = [0.0, 0.06]",
+                        "x = [0.0, 0.1]")),
+       "reaches outside the [domain] box");
+  // A valid flow region is refused as not yet coupled, at its `dynamics` key; it never runs at rest instead.
+  says(flow("cell = 0.005\ntop = 0.15\nkernel_width = 2.5"), "not yet coupled into the engine");
+}
