@@ -67,10 +67,19 @@ bool read_domain(const Params& root, Scene& s) {
   return rotation_switch;
 }
 
+// [neighbor] sort_every when the scene does not say (WorldConfig::sort_every; measured in bench/README.md).
+constexpr long kDefaultSortEvery = 0;
+
 void read_output(const Params& root, double r_min, Scene& s) {
   // Neighbour skin: default the smallest radius (LIGGGHTS scenes usually use ~r_min).
   s.config.skin = r_min;
-  if (auto nb = root.optional_table("neighbor")) s.config.skin = nb->number_or("skin", r_min, Range::positive);
+  s.config.sort_every = kDefaultSortEvery;
+  if (auto nb = root.optional_table("neighbor")) {
+    s.config.skin = nb->number_or("skin", r_min, Range::positive);
+    const long every = nb->integer_or("sort_every", kDefaultSortEvery);
+    if (every < 0 || every > 1000000) nb->fail("sort_every", fmt::format("must be 0 (no sort) .. 1000000 rebuilds, got {}", every));
+    s.config.sort_every = every;
+  }
   s.output_interval = s.end_time / 20.0;
   s.energy_interval = 0.0;
   if (auto out = root.optional_table("output")) {
