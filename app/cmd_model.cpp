@@ -103,6 +103,7 @@ void register_model_commands(CLI::App& app) {
     long seed = -1;
     double checkpoint_every = 0.0;
     std::string resume;
+    long sort_every = -1;  // --sort-every; -1: the scene's [neighbor] sort_every
   };
   auto opts = std::make_shared<Opts>();
   CLI::App* run = app.add_subcommand("run", "run an f-DEM scene (TOML) and write <stem>.h5 + <stem>.xmf");
@@ -119,6 +120,10 @@ void register_model_commands(CLI::App& app) {
   run->add_option("--checkpoint-every", opts->checkpoint_every,
                   "also write a checkpoint every this many seconds of wall-clock time (model/checkpoint.h)")
       ->check(CLI::PositiveNumber);
+  run->add_option("--sort-every", opts->sort_every,
+                  "neighbour rebuilds between spatial sorts of the particle store, 0: none (default: the scene's "
+                  "[neighbor] sort_every; changes the order of force sums, not the physics)")
+      ->check(CLI::Range(0L, 1000000L));
   run->add_option("--resume", opts->resume,
                   "continue the interrupted run whose checkpoint is in DIR (its output folder; same scene and --set)");
   run->callback([opts, run] {
@@ -140,10 +145,16 @@ void register_model_commands(CLI::App& app) {
     for (const auto& s : opts->sets) rs.command += " --set " + s;
     if (opts->realizations > 0) rs.command += fmt::format(" --realizations {}", opts->realizations);
     if (opts->seed >= 0) rs.command += fmt::format(" --seed {}", opts->seed);
+    if (opts->sort_every >= 0) rs.command += fmt::format(" --sort-every {}", opts->sort_every);
+    // A run-time setting like --threads, so not an edit of the scene (its text and hash stay the scene's).
+    auto sorted = [&](model::Scene s) {
+      if (opts->sort_every >= 0) s.config.sort_every = opts->sort_every;
+      return s;
+    };
     model::SceneDoc doc = model::scene_with_overrides(opts->scene, opts->overrides, opts->sets);
     if (opts->realizations == 0) {
       if (opts->seed >= 0) doc.apply(fmt::format("seed={}", opts->seed));
-      const model::Scene scene = doc.load();
+      const model::Scene scene = sorted(doc.load());
       if (should_run(opts->out, std::filesystem::path(scene.path).stem().string(), rs))
         run_one(scene, opts->out, opts->quiet, "", rs);
       return;
@@ -155,7 +166,7 @@ void register_model_commands(CLI::App& app) {
     for (int k = 0; k < opts->realizations; ++k) {
       model::SceneDoc dk = doc;
       dk.apply(fmt::format("seed={}", first + k));
-      scenes.push_back(dk.load());
+      scenes.push_back(sorted(dk.load()));
     }
     const std::string stem = std::filesystem::path(opts->scene).stem().string();
     std::vector<char> todo;
