@@ -100,7 +100,15 @@ struct RunCli {
   long seed = -1;
   double checkpoint_every = 0.0;
   std::string resume;
+  long sort_every = -1;  // --sort-every; -1: the scene's [neighbor] sort_every
 };
+
+// --sort-every: a run-time setting like --threads, so not an edit of the scene (its text and hash stay the
+// scene's).
+model::Scene with_sort(const RunCli& o, model::Scene s) {
+  if (o.sort_every >= 0) s.config.sort_every = o.sort_every;
+  return s;
+}
 
 // The checkpoint settings and the command that continues this run (stored in its checkpoints, quoted in
 // messages).
@@ -113,6 +121,7 @@ Resume resume_of(const RunCli& o) {
   for (const auto& s : o.sets) rs.command += " --set " + s;
   if (o.realizations > 0) rs.command += fmt::format(" --realizations {}", o.realizations);
   if (o.seed >= 0) rs.command += fmt::format(" --seed {}", o.seed);
+  if (o.sort_every >= 0) rs.command += fmt::format(" --sort-every {}", o.sort_every);
   return rs;
 }
 
@@ -124,7 +133,7 @@ void run_realizations(const RunCli& o, const model::SceneDoc& doc, const Resume&
   for (int k = 0; k < o.realizations; ++k) {
     model::SceneDoc dk = doc;
     dk.apply(fmt::format("seed={}", first + k));
-    scenes.push_back(dk.load());
+    scenes.push_back(with_sort(o, dk.load()));
   }
   const std::string stem = std::filesystem::path(o.scene).stem().string();
   std::vector<char> todo;
@@ -151,7 +160,7 @@ void run_command(RunCli& o, const CLI::App& run) {
   model::SceneDoc doc = model::scene_with_overrides(o.scene, o.overrides, o.sets);
   if (o.realizations > 0) return run_realizations(o, doc, rs);
   if (o.seed >= 0) doc.apply(fmt::format("seed={}", o.seed));
-  const model::Scene scene = doc.load();
+  const model::Scene scene = with_sort(o, doc.load());
   if (should_run(o.out, std::filesystem::path(scene.path).stem().string(), rs)) run_one(scene, o.out, o.quiet, "", rs);
 }
 
@@ -173,6 +182,10 @@ void register_model_commands(CLI::App& app) {
   run->add_option("--checkpoint-every", opts->checkpoint_every,
                   "also write a checkpoint every this many seconds of wall-clock time (model/checkpoint.h)")
       ->check(CLI::PositiveNumber);
+  run->add_option("--sort-every", opts->sort_every,
+                  "neighbour rebuilds between spatial sorts of the particle store, 0: none (default: the scene's "
+                  "[neighbor] sort_every; changes the order of force sums, not the physics)")
+      ->check(CLI::Range(0L, 1000000L));
   run->add_option("--resume", opts->resume,
                   "continue the interrupted run whose checkpoint is in DIR (its output folder; same scene and --set)");
   run->callback([opts, run] { run_command(*opts, *run); });

@@ -30,7 +30,7 @@ namespace pastemix::model {
 namespace {
 
 // Bumped whenever a stored member is added, removed or reordered.
-constexpr char kMagic[] = "pastemix-checkpoint-v1";
+constexpr char kMagic[] = "pastemix-checkpoint-v2";
 
 class Bytes {
  public:
@@ -100,6 +100,7 @@ struct CheckpointAccess {
   template <class IO, class W>
   static void world_state(IO& io, W& w) {
     io(w.t_), io(w.t_at_rebuild_), io(w.steps_), io(w.started_), io(w.escaped_mass_), io(w.profile_);
+    io(w.rebuilds_since_sort_);
     particles(io, w.p_);
     auto& q = w.pairs_;
     io(q.width), io(q.i), io(q.j), io(q.r_star), io(q.m_star), io(q.law_index), io(q.history), io(q.touching);

@@ -304,25 +304,29 @@ void WallContacts::rebuild(const std::vector<Wall>& w, const Particles& p, doubl
   touching.swap(new_touch);
 }
 
-void WallContacts::remove_particles(const std::vector<std::uint32_t>& map) {
+void WallContacts::rename(const std::vector<std::uint32_t>& map, std::size_t np) {
   const std::size_t wd = static_cast<std::size_t>(width);
-  std::uint32_t out = 0;
-  std::size_t next = 0;  // new particle index
+  // The new rows: their lengths by new index, prefix sums, then each kept row copied to its new place.
+  std::vector<std::uint32_t>& new_start = spare_start_;
+  new_start.assign(np + 1, 0);
+  for (std::size_t a = 0; a + 1 < start.size(); ++a)
+    if (map[a] != Particles::kGone) new_start[map[a] + 1] = start[a + 1] - start[a];
+  for (std::size_t q = 0; q < np; ++q) new_start[q + 1] += new_start[q];
+  const std::size_t total = new_start[np];
+  spare_near_.resize(total);
+  spare_touch_.resize(total);
+  spare_hist_.resize(total * wd);
   for (std::size_t a = 0; a + 1 < start.size(); ++a) {
-    const std::uint32_t c0 = start[a], c1 = start[a + 1];
     if (map[a] == Particles::kGone) continue;
-    start[next++] = out;  // next <= a: start[a + 1] is still unread old data
-    for (std::uint32_t c = c0; c < c1; ++c, ++out) {
-      near[out] = near[c];
-      touching[out] = touching[c];
-      std::copy_n(history.data() + c * wd, wd, history.data() + out * wd);
-    }
+    const std::uint32_t c0 = start[a], c1 = start[a + 1], to = new_start[map[a]];
+    std::copy(near.begin() + c0, near.begin() + c1, spare_near_.begin() + to);
+    std::copy(touching.begin() + c0, touching.begin() + c1, spare_touch_.begin() + to);
+    std::copy_n(history.data() + c0 * wd, (c1 - c0) * wd, spare_hist_.data() + to * wd);
   }
-  start.resize(next + 1);
-  start[next] = out;
-  near.resize(out);
-  touching.resize(out);
-  history.resize(out * wd);
+  start.swap(new_start);
+  near.swap(spare_near_);
+  touching.swap(spare_touch_);
+  history.swap(spare_hist_);
 }
 
 void PairList::rebuild(CandidatePairs& c, const Particles& p, int n_materials, int loop_threads) {
@@ -337,9 +341,9 @@ void PairList::rebuild(CandidatePairs& c, const Particles& p, int n_materials, i
   law_index.resize(n);
   // History carry-over: a new pair (a, b) looks for (a, b) among the old pairs of a (its old CSR row, a
   // few entries). Only touching pairs carry a spring (a pair stops touching -> its history is zeroed).
-  // Dense indices are the same in both lists (a removal renames the old list first: remove_particles), so
-  // (a, b) names the same two particles in both, and a < b in both (build_pairs; a removal keeps the
-  // order), so the stored spring needs no sign flip.
+  // Dense indices are the same in both lists (a removal or a spatial sort renames the old list first:
+  // rename()), so (a, b) names the same two particles in both, and a < b in both (build_pairs; rename()
+  // keeps its pairs (lower, higher), negating the springs of a swapped pair).
   const bool carry = !start.empty() && width > 0;
   const long nn = static_cast<long>(n);
 #pragma omp parallel for schedule(static) num_threads(loop_threads)
@@ -381,19 +385,27 @@ void PairList::index_by_first(std::size_t np) {
   start[0] = 0;
 }
 
-void PairList::remove_particles(const std::vector<std::uint32_t>& map, std::size_t np) {
+void PairList::rename(const std::vector<std::uint32_t>& map, std::size_t np) {
   const std::size_t n = i.size(), ws = static_cast<std::size_t>(width);
   std::size_t out = 0;
   for (std::size_t k = 0; k < n; ++k) {
-    const std::uint32_t a = map[i[k]], b = map[j[k]];
+    std::uint32_t a = map[i[k]], b = map[j[k]];
     if (a == Particles::kGone || b == Particles::kGone) continue;
+    // A pair stays (lower index, higher index). A permutation may swap its ends: the springs are then
+    // seen from the other particle, so they change sign (the tangential spring follows v_rel = v_j - v_i,
+    // the rolling one w_i - w_j: both odd under i <-> j; negation is exact).
+    const bool swap = a > b;
+    if (swap) std::swap(a, b);
     i[out] = a;
     j[out] = b;
     r_star[out] = r_star[k];
     m_star[out] = m_star[k];
     law_index[out] = law_index[k];
     touching[out] = touching[k];
-    std::copy_n(history.data() + k * ws, ws, history.data() + out * ws);  // out <= k: a forward copy
+    double* h = history.data() + out * ws;
+    std::copy_n(history.data() + k * ws, ws, h);  // out <= k: a forward copy
+    if (swap)
+      for (std::size_t e = 0; e < ws; ++e) h[e] = -h[e];
     ++out;
   }
   i.resize(out);

@@ -13,10 +13,10 @@
 //
 // History (tangential spring, rolling spring) belongs to the pair of particles (dense indices) and is
 // carried from the old list to the new one at every neighbour rebuild, so a lasting contact keeps its
-// spring. Dense indices change only when particles are removed (outflow, World::remove_escaped): then
-// remove_particles() renames the old list's pairs and wall candidates through the old -> new index map
-// (dropping those of the removed particles) before the rebuild that follows, so the carry-over still finds
-// every remaining contact.
+// spring. Dense indices change when particles are removed (outflow, World::remove_escaped) and when the
+// World sorts the store spatially at a rebuild ([neighbor] sort_every): then rename() renames the old
+// list's pairs and wall candidates through the old -> new index map (dropping those of removed particles)
+// before the rebuild that follows, so the carry-over still finds every remaining contact.
 #pragma once
 
 #include <algorithm>
@@ -82,10 +82,11 @@ struct PairList {
   void sync_cross();
   // Sets ghost[parity] from the particles (before the threads start).
   void fill_ghosts(const Particles& p);
-  // Particles were removed (map: old -> new dense index, Particles::kGone if removed; np: the new count):
-  // drops their pairs and renames the others, history and touching flags kept (the threads are done,
-  // sync_cross() has run). Only rebuild() may follow: the partition is reset.
-  void remove_particles(const std::vector<std::uint32_t>& map, std::size_t np);
+  // The particles were renamed (map: old -> new dense index, Particles::kGone if removed; np: the new
+  // count; an outflow removal or the spatial sort): drops the pairs of removed particles and renames the
+  // others, history and touching flags kept (a pair whose ends swap keeps (lower, higher) with its springs
+  // negated). The threads are done, sync_cross() has run. Only rebuild() may follow: the partition is reset.
+  void rename(const std::vector<std::uint32_t>& map, std::size_t np);
 
  private:
   void index_by_first(std::size_t np);  // the CSR start / entry by first particle
@@ -106,8 +107,9 @@ struct WallContacts {
   // Rebuilds the candidate lists at time t (walls at their positions then), carrying over the history of
   // candidates that stay; a (particle, wall) that is no longer a candidate is not touching, so it has none.
   void rebuild(const std::vector<Wall>& walls, const Particles& p, double t, double skin, int threads);
-  // Particles were removed (map as PairList::remove_particles): drops their candidates, keeps the others'.
-  void remove_particles(const std::vector<std::uint32_t>& map);
+  // The particles were renamed (map and np as PairList::rename): each kept particle's candidates move to
+  // its new index with their history and flags; a removed particle's are dropped.
+  void rename(const std::vector<std::uint32_t>& map, std::size_t np);
 
  private:
   std::vector<char> cand_;  // rebuild(): per particle and wall, candidate or not

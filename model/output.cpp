@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: MIT
 #include "model/output.h"
 
+#include <algorithm>
+#include <numeric>
+
 #include <fmt/format.h>
 
 #include "base/h5.h"
@@ -96,13 +99,25 @@ void RunOutput::snapshot(const World& w) {
   const Particles& p = w.particles();
   const std::string g = group(snap_times_.size());
   const std::uint64_t n = p.size();
-  h5_->write(g + "/position", flat(p.x), {n, 3});
-  h5_->write(g + "/velocity", flat(p.v), {n, 3});
-  h5_->write(g + "/radius", p.radius, {n});
-  h5_->write(g + "/id", p.id, {n});
-  std::vector<std::int32_t> mat(p.material.begin(), p.material.end());
+  // The particles by ascending id: the engine's dense order is spatial once it sorts the store
+  // ([neighbor] sort_every), and the files keep the layout they have without the sort.
+  std::vector<std::size_t> by_id(n);
+  std::iota(by_id.begin(), by_id.end(), std::size_t{0});
+  if (!std::is_sorted(p.id.begin(), p.id.end()))
+    std::sort(by_id.begin(), by_id.end(), [&](std::size_t a, std::size_t b) { return p.id[a] < p.id[b]; });
+  auto in_id_order = [&](const auto& v) {
+    std::vector<std::decay_t<decltype(v[0])>> out(n);
+    for (std::size_t k = 0; k < n; ++k) out[k] = v[by_id[k]];
+    return out;
+  };
+  h5_->write(g + "/position", flat(in_id_order(p.x)), {n, 3});
+  h5_->write(g + "/velocity", flat(in_id_order(p.v)), {n, 3});
+  h5_->write(g + "/radius", in_id_order(p.radius), {n});
+  h5_->write(g + "/id", in_id_order(p.id), {n});
+  const std::vector<int> mat_sorted = in_id_order(p.material);
+  std::vector<std::int32_t> mat(mat_sorted.begin(), mat_sorted.end());
   h5_->write(g + "/material", mat, {n});
-  if (rotation_) h5_->write(g + "/angular_velocity", flat(p.omega), {n, 3});
+  if (rotation_) h5_->write(g + "/angular_velocity", flat(in_id_order(p.omega)), {n, 3});
   h5_->attribute(g, "time_s", w.time());
   snap_times_.push_back(w.time());
   snap_counts_.push_back(p.size());
@@ -155,6 +170,7 @@ std::string RunOutput::finish(const World& w, double wall_seconds, int threads) 
   h5_->write("/profile/seconds", secs);
   h5_->attribute("/profile", "steps", static_cast<std::int64_t>(w.steps()));
   h5_->attribute("/profile", "rebuilds", static_cast<std::int64_t>(prof.rebuilds));
+  h5_->attribute("/profile", "sorts", static_cast<std::int64_t>(prof.sorts));
   h5_->attribute("/profile", "wall_seconds", wall_seconds);
   h5_->attribute("/profile", "steps_per_second", wall_seconds > 0 ? static_cast<double>(w.steps()) / wall_seconds : 0.0);
   h5_->attribute("/profile", "threads", static_cast<std::int64_t>(threads));

@@ -26,35 +26,44 @@ void Particles::add(int material_index, double radius_m, double density, const V
 
 namespace {
 
-// Keeps the entries whose new index is not kGone (new indices ascend with the old ones: in place).
+// v[a] moves to map[a] (kGone: dropped); out-of-place, so any injective map works.
 template <class T>
-void compact(std::vector<T>& v, const std::vector<std::uint32_t>& map) {
+void move_to(std::vector<T>& v, const std::vector<std::uint32_t>& map, std::size_t count, std::vector<T>& scratch) {
   if (v.empty()) return;
-  std::size_t out = 0;
+  scratch.resize(count);
   for (std::size_t a = 0; a < map.size(); ++a)
-    if (map[a] != Particles::kGone) v[out++] = v[a];
-  v.resize(out);
+    if (map[a] != Particles::kGone) scratch[map[a]] = v[a];
+  v.swap(scratch);
 }
 
 }  // namespace
+
+void Particles::apply_map(const std::vector<std::uint32_t>& map, std::size_t count) {
+  // One scratch per element type, reused across the arrays of that type.
+  std::vector<Vec3> sv;
+  std::vector<double> sd;
+  std::vector<int> si;
+  std::vector<std::int64_t> sl;
+  move_to(id, map, count, sl);
+  move_to(material, map, count, si);
+  move_to(radius, map, count, sd);
+  move_to(mass, map, count, sd);
+  move_to(inv_mass, map, count, sd);
+  move_to(x, map, count, sv);
+  move_to(v, map, count, sv);
+  move_to(f, map, count, sv);
+  move_to(omega, map, count, sv);
+  move_to(torque, map, count, sv);
+  move_to(inv_inertia, map, count, sd);
+  move_to(rolling_capacity, map, count, sd);
+}
 
 std::vector<std::uint32_t> Particles::remove_if(const std::vector<char>& gone) {
   std::vector<std::uint32_t> map(size(), kGone);
   std::uint32_t next = 0;
   for (std::size_t a = 0; a < map.size(); ++a)
     if (!gone[a]) map[a] = next++;
-  compact(id, map);
-  compact(material, map);
-  compact(radius, map);
-  compact(mass, map);
-  compact(inv_mass, map);
-  compact(x, map);
-  compact(v, map);
-  compact(f, map);
-  compact(omega, map);
-  compact(torque, map);
-  compact(inv_inertia, map);
-  compact(rolling_capacity, map);
+  apply_map(map, next);
   return map;
 }
 

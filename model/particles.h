@@ -6,6 +6,9 @@
 // so id equals the dense index; with on_exit = "remove" a particle that leaves the domain is removed by
 // World (remove_if compacts every array, order kept), the later dense indices shift down and only `id`
 // still names the particle (outputs write it; contact histories are remapped by World, see world.cpp).
+// With [neighbor] sort_every > 0 the World also permutes the store into the cell order of the neighbour
+// grid at rebuilds (apply_map): then the dense order is spatial, not the id order, and the outputs write
+// the particles sorted by id (output.cpp), so the files keep their layout.
 //
 // Angular arrays (omega, torque, inv_inertia, rolling capacity) are allocated only when the Plan says a
 // law produces torque (`has_rotation`); with them absent the integrator skips rotation entirely.
@@ -47,6 +50,10 @@ struct Particles {
   // of the others; returns the old -> new dense index map (kGone for a removed particle).
   static constexpr std::uint32_t kGone = 0xffffffffu;
   std::vector<std::uint32_t> remove_if(const std::vector<char>& gone);
+  // Moves every particle a to dense index map[a] in every array (rotation arrays included), dropping those
+  // with map[a] == kGone; count: the new size. map is injective on the kept particles and onto 0 .. count-1
+  // (remove_if's compaction, or World's spatial sort at rebuilds: a permutation). `id` moves with the rest.
+  void apply_map(const std::vector<std::uint32_t>& map, std::size_t count);
 };
 
 }  // namespace pastemix::model

@@ -10,7 +10,7 @@ namespace pastemix::model {
 // The stages in the order of the step:
 //   kick_drift      the first half kick and drift of a batch of steps (World::advance; the later ones are
 //                   fused into `kick`)
-//   neighbor        list rebuilds (and the threads' partition)
+//   neighbor        list rebuilds (and the threads' partition, and the spatial sort of the particles)
 //   contact_forces  the pair pass (contact and rolling laws over the pair list)
 //   walls           the wall pass (forces/wall_forces.h): wall forces of the particles near a wall
 //   kick            the closing half kick, the next opening half kick and drift of the particles no kick
@@ -25,6 +25,7 @@ struct Profile {
                                                         "kick",       "fluid",    "wait",           "output"};
   std::array<double, count> seconds{};
   long rebuilds = 0;
+  long sorts = 0;  // spatial sorts of the particle store (WorldConfig::sort_every), timed in `neighbor`
 };
 
 }  // namespace pastemix::model

@@ -19,8 +19,9 @@ namespace pastemix::model {
 std::string format_profile(const Profile& p, long steps, double wall_seconds, std::size_t particles) {
   double total = 0.0;
   for (double s : p.seconds) total += s;
-  std::string out = fmt::format("stage profile ({} steps, {} particles, {} neighbour rebuilds):\n", steps,
-                                particles, p.rebuilds);
+  const std::string sorts = p.sorts > 0 ? fmt::format(", {} spatial sorts", p.sorts) : "";
+  std::string out = fmt::format("stage profile ({} steps, {} particles, {} neighbour rebuilds{}):\n", steps,
+                                particles, p.rebuilds, sorts);
   for (int k = 0; k < Profile::count; ++k)
     out += fmt::format("  {:<15} {:9.3f} s  {:5.1f} %\n", Profile::names[k], p.seconds[k],
                        total > 0 ? 100.0 * p.seconds[k] / total : 0.0);

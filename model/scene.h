@@ -23,6 +23,9 @@
 //   rolling_damping = 0.3          # a key of the elastic_plastic rolling law (eta_r, default 0.3)
 //   [neighbor]
 //   skin = 1e-3                    # m, Verlet skin (default: the smallest particle radius)
+//   sort_every = 8                 # neighbour rebuilds between spatial sorts of the particle store (the
+//                                  # first rebuild sorts; default 8; 0: never; `pastemix run --sort-every`; changes the order of force sums, not the
+//                                  # physics; outputs stay in id order): WorldConfig::sort_every
 //   [stop]                         # optional: end when the rock is at rest (keys in model/stop_rule.h)
 //   rule = "at_rest"  speed = 0.01  moving_mass = 1e-3  check_interval = 0.01  start = 0.1
 //   [output]                       # optional

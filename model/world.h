@@ -48,6 +48,11 @@ struct WorldConfig {
   // Loops over fewer particles (or pairs) than this run on one thread (model/parallel.h); the bits do not
   // depend on it. Tests set 0 to run the parallel paths on small scenes.
   long parallel_min_items = 512;
+  // Spatial sort of the particle store ([neighbor] sort_every): every sort_every-th neighbour rebuild (the
+  // first included) permutes the particles into the cell order of a grid over their bounding box, so that a
+  // particle's partners lie near it in memory; 0: never (the particles stay in insertion order). Changes
+  // the order of sums (forces, surface rise), so the bits, not the physics.
+  long sort_every = 0;
 };
 
 // A particle removed at the domain boundary (on_exit = remove).
@@ -111,6 +116,11 @@ class World {
   // map and rebuilds the lists (RuntimeFailure past max_escaped_fraction).
   void remove_escaped(double& moved2);
   void rebuild_neighbors();
+  // The spatial sort (WorldConfig::sort_every): the permutation old -> new of the cell order, then every
+  // per-particle array and list moved through it (Particles::apply_map, PairList / WallContacts::rename,
+  // the passes' particles_moved). Serial and a function of the positions only: the same for any threads.
+  void sort_particles();
+  std::vector<std::uint32_t> cell_order() const;
   // The threads of a loop over n items (WorldConfig::parallel_min_items).
   int threads_for(long n) const;
   // What the kick of a pass does after the forces.
@@ -165,6 +175,7 @@ class World {
   double t_ = 0.0;
   double t_at_rebuild_ = 0.0;
   long steps_ = 0;
+  long rebuilds_since_sort_ = 0;  // neighbour rebuilds since the last spatial sort (sort_every)
   bool started_ = false;
   // First problem found during a step (dense index, or -1) and its cause, reported by check().
   mutable long bad_index_ = -1;

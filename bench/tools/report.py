@@ -63,7 +63,7 @@ def liggghts_final_state(text):
 #     total wall          3.350 s  (597 steps/s, 7.74e+06 particle-steps/s)
 # "total wall" covers the whole step loop including the HDF5 snapshots at t = 0 and at the end; the loop
 # time used here is total wall minus the output stage (LIGGGHTS writes no snapshots in its loop).
-PASTEMIX_HEAD = re.compile(r"stage profile \((\d+) steps, (\d+) particles, (\d+) neighbour rebuilds\)")
+PASTEMIX_HEAD = re.compile(r"stage profile \((\d+) steps, (\d+) particles, (\d+) neighbour rebuilds[^)]*\)")
 PASTEMIX_STAGE = re.compile(r"^ +([a-z_]+) +([0-9.eE+-]+) s +([0-9.]+) %", re.M)
 PASTEMIX_TOTAL = re.compile(r"^ +total wall +([0-9.eE+-]+) s", re.M)
 

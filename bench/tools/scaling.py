@@ -1,5 +1,6 @@
 #!/usr/bin/python3
-"""The scaling series of bench/run.sh --scaling: cost per particle-step against N, for both codes.
+"""The scaling series of bench/run.sh --scaling: cost per particle-step against N, for both codes (and the
+baseline build, PASTEMIX_BASELINE, when the harness ran one).
 
 Logs in WORK are <code>_pours<K>_t1_r<repeat>.log (the pour K times wider and longer: K^2 x 12,960 spheres,
 same 12 layers, so every column of the pile sees the same physics and only N changes). For each (code, K) the
@@ -20,7 +21,7 @@ import time
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import report  # noqa: E402  (the log parsers)
 
-LOGNAME = re.compile(r"(liggghts|pastemix)_pours(\d+)_t1_r(\d+)\.log$")
+LOGNAME = re.compile(r"(liggghts|pastemix|baseline)_pours(\d+)_t1_r(\d+)\.log$")
 
 
 def slope(xs, ys):
@@ -57,7 +58,7 @@ def main():
     rows = []
     print("%-8s %4s %9s %14s %12s %14s" % ("code", "K", "N", "ns/particle-step", "Mps/s", "peak RSS B/N"))
     summary = []
-    for code in ("pastemix", "liggghts"):
+    for code in ("pastemix", "baseline", "liggghts"):
         ks = sorted(k for c, k in best if c == code)
         if not ks:
             continue

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "model/fluid/field.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -150,6 +151,38 @@ void FluidField::update_clusters(const Particles& p, const std::vector<std::uint
   clustered_version_ = pairs_version_, clustered_members_ = members_, clustered_surface_ = surface_;
   clustered_x_.resize(members_.size());
   for (std::size_t q = 0; q < members_.size(); ++q) clustered_x_[q] = p.x[static_cast<std::size_t>(members_[q])];
+}
+
+namespace {
+
+// v[a] moves to map[a] (a permutation; an array not yet sized for the particles stays as it is).
+template <class T>
+void permute(std::vector<T>& v, const std::vector<std::uint32_t>& map) {
+  if (v.size() != map.size()) return;
+  std::vector<T> out(v.size());
+  for (std::size_t a = 0; a < map.size(); ++a) out[map[a]] = v[a];
+  v.swap(out);
+}
+
+// The indices of a list renamed through map, ascending again.
+void rename(std::vector<long>& list, const std::vector<std::uint32_t>& map) {
+  for (long& a : list) a = static_cast<long>(map[static_cast<std::size_t>(a)]);
+  std::sort(list.begin(), list.end());
+}
+
+}  // namespace
+
+void FluidField::particles_moved(const std::vector<std::uint32_t>& map) {
+  for (auto* v : {&v_sub_, &phi_, &y_, &d0_, &lin_k_, &lin_decay_, &lin_gain_, &factor_}) permute(*v, map);
+  permute(region_of_, map);
+  permute(rest_region_, map);
+  rename(candidates_, map);
+  rename(members_, map);
+  rename(factored_, map);
+  // The clusters' change test compares member lists and positions by index: renamed, it would compare
+  // other orders. The rebuild that sorted has bumped pairs_version_ (mark_stale) and so forces the next
+  // cluster update anyway; this only says so here too.
+  clustered_version_ = -1;
 }
 
 namespace {

@@ -102,6 +102,11 @@ class FluidField {
     phi_.clear(), y_.clear(), d0_.clear(), rest_region_.clear(), clustered_members_.clear();
     lin_k_.clear(), lin_decay_.clear(), lin_gain_.clear();
   }
+  // The World permuted the particles (its spatial sort at a pair-list rebuild; map: old -> new dense index, a
+  // permutation): every per-particle array moves with its particle and the index lists are renamed and kept
+  // ascending, so each particle keeps its region, its constants and its cluster factor (the same kicks as
+  // without the sort; only sums over particles, such as the surface rise, see another order).
+  void particles_moved(const std::vector<std::uint32_t>& map);
   std::size_t candidate_count() const { return margin_ > 0.0 ? candidates_.size() : region_of_.size(); }
   // New velocity after a kick of length h (s) of particle a under the non-drag force F (N, gravity
   // included, buoyancy not: added here); g is the gravity vector (m/s2). mass and radius are particle a's

@@ -35,6 +35,8 @@ struct FluidForces {
   void lists_rebuilt() { field->mark_stale(); }
   // Particles were removed (outflow): the field's per-particle arrays are anew at the next update.
   void particles_removed() { field->particles_removed(); }
+  // The World sorted the particles (map: old -> new dense index): the field's arrays move with them.
+  void particles_moved(const std::vector<std::uint32_t>& map) { field->particles_moved(map); }
 
   bool claims(long a) const { return field->inside(a); }
   const std::vector<long>& members() const { return field->members(); }

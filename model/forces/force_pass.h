@@ -19,7 +19,9 @@
 //   prepare(step)       once per step and thread, before the pair pass (the walls' positions at t; the fluid
 //                       field's update, on one thread, with its barrier);
 //   lists_rebuilt(), particles_removed()  after a neighbour rebuild / an outflow removal (the fluid field's
-//                       candidate list and per-particle arrays).
+//                       candidate list and per-particle arrays);
+//   particles_moved(map)  after the World's spatial sort (map: old -> new dense index, a permutation): a pass
+//                       with per-particle state moves it with the particles.
 // Each particle's operations stay its own and in the same order (pair forces, then the force passes in
 // list order, then one kick), so splitting the step into passes changes no bit (scripts/bitwise_check.sh).
 #pragma once

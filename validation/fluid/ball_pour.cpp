@@ -122,9 +122,10 @@ BallPourResult ball_pour(const FunnelPour& p, std::uint64_t seed) {
     w.step();
     b.steps = s;
     if (s % 50 == 0) {  // exit passages: a ball at 2 m/s moves 0.35 mm in 50 steps of 3.5 us
+      // By id: the engine may reorder its particles at rebuilds ([neighbor] sort_every).
       for (std::size_t a = 0; a < pt.size(); ++a)
-        if (!out[a] && pt.x[a].z + r < g.z_tube) {
-          out[a] = 1;
+        if (const auto id = static_cast<std::size_t>(pt.id[a]); !out[id] && pt.x[a].z + r < g.z_tube) {
+          out[id] = 1;
           if (n_out++ == 0) b.first_out = w.time();
           b.last_out = w.time();
         }
