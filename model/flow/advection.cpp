@@ -113,25 +113,12 @@ Sweep sweep_fluxes(const Grid& g, const Phases& ph, double dt, int d, const std:
 
 }  // namespace
 
-Faces face_densities(const Grid& g, const Phases& ph, const std::vector<double>& alpha) {
-  Faces rho;
-  for (int c = 0; c < 3; ++c) {
-    rho[c].assign(g.face_count(c), 0.0);
-    for_faces(g, c, [&](const std::array<int, 3>& q) {
-      std::array<int, 3> a = q, b = q;
-      a[c] = g.wrap_cell(c, q[c] - 1);
-      b[c] = g.wrap_cell(c, q[c]);
-      double sum = 0.0;
-      int count = 0;
-      if (a[c] >= 0) sum += ph.density(clamp01(alpha[g.cell(a)])), ++count;
-      if (b[c] >= 0) sum += ph.density(clamp01(alpha[g.cell(b)])), ++count;
-      rho[c][g.face(c, q)] = sum / count;
-    });
-  }
-  return rho;
-}
+namespace {
 
-Faces face_means(const Grid& g, const std::vector<double>& cells) {
+// Face values of a cell quantity value(cell index): the mean of the face's two cells; a boundary face takes its
+// one cell's. The one averaging rule of the densities and of the fluid fraction.
+template <class CellValue>
+Faces face_mean_of(const Grid& g, CellValue value) {
   Faces out;
   for (int c = 0; c < 3; ++c) {
     out[c].assign(g.face_count(c), 0.0);
@@ -141,12 +128,22 @@ Faces face_means(const Grid& g, const std::vector<double>& cells) {
       b[c] = g.wrap_cell(c, q[c]);
       double sum = 0.0;
       int count = 0;
-      if (a[c] >= 0) sum += cells[g.cell(a)], ++count;
-      if (b[c] >= 0) sum += cells[g.cell(b)], ++count;
+      if (a[c] >= 0) sum += value(g.cell(a)), ++count;
+      if (b[c] >= 0) sum += value(g.cell(b)), ++count;
       out[c][g.face(c, q)] = sum / count;
     });
   }
   return out;
+}
+
+}  // namespace
+
+Faces face_densities(const Grid& g, const Phases& ph, const std::vector<double>& alpha) {
+  return face_mean_of(g, [&](long cell) { return ph.density(clamp01(alpha[cell])); });
+}
+
+Faces face_means(const Grid& g, const std::vector<double>& cells) {
+  return face_mean_of(g, [&](long cell) { return cells[cell]; });
 }
 
 AdvectionStats advect(const Grid& g, const Phases& ph, double dt, long step, std::vector<double>& alpha, Faces& u,
