@@ -22,11 +22,15 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "app/study/ladder.h"
+#include "app/study/ledger.h"
+#include "app/study/ranks.h"
 #include "app/study/run_cache.h"
+#include "app/study/tasks.h"
 #include "model/scene_doc.h"
 
 namespace pastemix::app::study {
@@ -48,6 +52,13 @@ struct SweepOptions {
   // sweep recomputes no finished (value, seed). Empty: nothing kept (the command's default is <out>/runs).
   std::filesystem::path runs;
   std::string engine;             // software version, written into each run record (provenance)
+  Ledger* ledger = nullptr;       // the study's ledger (ledger.h); null: none
+  const Ranks* ranks = nullptr;   // MPI ranks (ranks.h); null: one process
+  std::optional<long> task_index; // run this task alone (a Slurm array index; tasks.h)
+  // A run in progress writes <runs>/<key>.checkpoint.h5 every this many wall-clock seconds (0: never) and a
+  // rerun after a kill continues it (final-state QoIs; a QoI over every step is run in-process, whole).
+  double checkpoint_wall_s = 300.0;
+  std::string resume_with;        // the command that resumes the study (stored in each checkpoint)
 };
 
 // A ladder point at which at least one run failed (left out of the reference and the choice).
@@ -87,11 +98,19 @@ SweepResult sweep(const model::SceneDoc& base, const SweepOptions& o);
 // Writes <out>/sweep.csv, <out>/chosen_overrides.toml, <out>/sweep.png (PNG only if python works).
 void write_outputs(const SweepResult& r, const SweepOptions& o);
 
-// run_once through a run cache (app/study/run_cache.h): a recorded run is read back (on_disk = true), a
-// recorded failure is thrown again as the RuntimeFailure it was; a new run (or failure) is recorded, with
-// `what` (e.g. "mu_r = 0.3 seed 2") and `engine` (the software version) in the record.
-RunCost cached_run_once(const model::SceneDoc& doc, const std::string& qoi, const RunCache& cache,
-                        const std::string& what, const std::string& engine, bool& on_disk,
-                        const std::filesystem::path& save_h5 = {});
+// Where a study's run keeps its files: result and checkpoint as <dir>/<stem>.h5 / .checkpoint.h5 (deleted
+// once the QoI is taken), or, with `save_h5`, the result kept there (its checkpoint beside it).
+struct TaskFiles {
+  std::filesystem::path dir;     // empty: run in-process, no files, no checkpoint
+  std::string stem;              // the task's key
+  double checkpoint_wall_s = 0.0;
+  std::string resume_with;
+  std::filesystem::path save_h5;
+};
+// One run of a QoI study (sweep, rolling resistance): a final-state QoI runs through model::run_scene with
+// checkpoints, continuing a checkpoint left by a kill (`from` = resumed); a QoI over every step runs
+// in-process (run_once). Throws RuntimeFailure as run_once does.
+RunCost run_qoi_task(const model::SceneDoc& doc, const std::string& qoi, const TaskFiles& files, From& from);
+RunRecord record_of(const RunCost& c);
 
 }  // namespace pastemix::app::study
