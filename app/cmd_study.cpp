@@ -164,8 +164,10 @@ void register_rheology(CLI::App* cal) {
       res = study::calibrate_rheology(base, o);
       index_run = false;
     });
-    if (index_run || !st.ranks->root()) {
-      if (!res.fit.ok && !index_run) throw RuntimeFailure("calibrate rheology: no result: " + res.fit.why);
+    if (!index_run && o.task_index) fmt::print("task {}: every task of the study is finished; the gathering run (the same command without --task-index) "
+                 "writes the ledger and the outputs\n", *o.task_index);
+    if (index_run || o.task_index || !st.ranks->root()) {
+      if (!res.fit.ok && !index_run && !o.task_index) throw RuntimeFailure("calibrate rheology: no result: " + res.fit.why);
       return;
     }
     std::string command = fmt::format("pastemix calibrate rheology --case {} --family {} --seeds {} --scene {} --out {}",
@@ -206,7 +208,9 @@ void run_sweep(SweepCli& c) {
     r = study::sweep(base, c.o);
     index_run = false;
   });
-  if (index_run || !st.ranks->root()) return;
+  if (!index_run && c.o.task_index) fmt::print("task {}: every task of the study is finished; the gathering run (the same command without --task-index) "
+                 "writes the ledger and the outputs\n", *c.o.task_index);
+  if (index_run || c.o.task_index || !st.ranks->root()) return;
   fmt::print("{}", r.table);
   if (!c.o.runs.empty())
     fmt::print("runs: {} done now, {} read back from {}\n", r.executed, r.read_back, c.o.runs.string());
@@ -272,7 +276,9 @@ void run_rolling_resistance(RollingCli& c) {
     r = study::calibrate_rolling(base, o);
     index_run = false;
   });
-  if (index_run) return;
+  if (!index_run && o.task_index) fmt::print("task {}: every task of the study is finished; the gathering run (the same command without --task-index) "
+                 "writes the ledger and the outputs\n", *o.task_index);
+  if (index_run || o.task_index) return;
   if (st.ranks->root()) {
     study::write_rolling_outputs(r, o);
     fmt::print("{}", study::rolling_table(r, o));

@@ -71,7 +71,8 @@ class Runner {
       throw InputError("--task-index", 0, "", "one task per process: not with several MPI ranks");
     std::vector<std::size_t> pending;
     if (rank == 0) find_finished(pending);
-    if (io_.task_index) run_index(pending);
+    // An index run of a round whose tasks are all finished goes on to the next round (or to the end).
+    if (io_.task_index && !pending.empty()) run_index(pending);
     pending = share_pending(pending);
     std::vector<std::size_t> mine;
     for (std::size_t j = static_cast<std::size_t>(rank); j < pending.size(); j += static_cast<std::size_t>(size))
@@ -88,7 +89,7 @@ class Runner {
       const Task& t = tasks_[i];
       if (const LedgerRow* row = io_.ledger ? io_.ledger->find(t.key) : nullptr) {
         done(i, row->outcome, From::ledger);
-      } else if (auto rec = io_.task_index ? std::nullopt : cache_.find(t.key)) {
+      } else if (auto rec = cache_.find(t.key)) {
         done(i, *rec, From::record);
       } else {
         pending.push_back(i);
@@ -104,7 +105,7 @@ class Runner {
     const Task& t = tasks_[static_cast<std::size_t>(k)];
     bool todo = false;
     for (std::size_t i : pending) todo = todo || i == static_cast<std::size_t>(k);
-    if (!todo) throw TaskIndexDone{fmt::format("task {} of {} ({}, key {}): finished already (in the ledger)", k, tasks_.size(), t.what, t.key)};
+    if (!todo) throw TaskIndexDone{fmt::format("task {} of {} ({}, key {}): finished already", k, tasks_.size(), t.what, t.key)};
     From from = From::ran;
     const RunRecord r = compute(t, io_, cache_, from);
     if (io_.on_done) io_.on_done(t, r, from);
@@ -131,7 +132,8 @@ class Runner {
     have_[i] = true;
     ++(from == From::ran ? counts_.ran : from == From::resumed ? counts_.resumed : from == From::disk ? counts_.disk
        : from == From::record ? counts_.record : counts_.ledger);
-    if (io_.ledger && from != From::ledger) io_.ledger->append(tasks_[i].key, io_.study, tasks_[i].what, r);
+    // Array jobs (task_index) never append: many writers, one file; the gathering run does.
+    if (io_.ledger && from != From::ledger && !io_.task_index) io_.ledger->append(tasks_[i].key, io_.study, tasks_[i].what, r);
     if (io_.on_done) io_.on_done(tasks_[i], r, from);
   }
 

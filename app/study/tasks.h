@@ -18,7 +18,8 @@
 //     sent to rank 0, which writes the ledger; at the end every rank gets every outcome;
 //   - one task (`task_index`, a Slurm job array's index): that task alone is run (or found finished) and its
 //     record written; the ledger is left to a final gathering run of the same command without the index,
-//     so that many array jobs never append to one file at once. Then TaskIndexDone is thrown.
+//     so that many array jobs never append to one file at once. Then TaskIndexDone is thrown. A list whose
+//     tasks are all finished returns as usual (a calibration's next round is then the one indexed).
 #pragma once
 
 #include <filesystem>

@@ -166,6 +166,12 @@ TEST_CASE("--task-index runs one task and records it; the gathering run reads it
   REQUIRE(gather.exit_code == 0);
   CHECK(gather.output.find("runs: 2 done now, 1 read back") != std::string::npos);
   CHECK(lines_in(d / "l.csv") == 4);
+  // An array job of a study that is all finished does nothing and writes nothing.
+  fs::remove(d / "out" / "sweep.csv");
+  const auto late = test::run_pastemix(sweep + fmt::format(" --task-index 0 --ledger '{}'", (d / "l.csv").string()));
+  CHECK(late.exit_code == 0);
+  CHECK(late.output.find("every task of the study is finished") != std::string::npos);
+  CHECK_FALSE(fs::exists(d / "out" / "sweep.csv"));
 }
 
 TEST_CASE("the Slurm job-array script passes bash -n and runs its array index as --task-index") {
