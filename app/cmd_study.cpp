@@ -225,8 +225,8 @@ void register_sweep(CLI::App& app) {
   for (const auto& q : study::qoi_registry()) qoi_help += " " + q.name + " (" + q.unit + ")";
   CLI::App* s = app.add_subcommand("sweep", "speed against error: run a scene over a ladder of one setting");
   s->add_option("scene", opts->scene, "scene file (TOML)")->required();
-  s->add_option("--vary", opts->o.vary, "dt | youngs_modulus | psd_cut")->required()->check(
-      CLI::IsMember({"dt", "youngs_modulus", "psd_cut"}));
+  s->add_option("--vary", opts->o.vary, "dt | youngs_modulus | psd_cut | lift_speed")->required()->check(
+      CLI::IsMember({"dt", "youngs_modulus", "psd_cut", "lift_speed"}));
   s->add_option("--qoi", opts->o.qoi, qoi_help)->required();
   s->add_option("--values", opts->o.values, "ladder values, coarse -> fine (default: see app/study/sweep.h)");
   s->add_option("--levels", opts->o.levels, "default-ladder length (default 4)");
@@ -238,6 +238,7 @@ void register_sweep(CLI::App& app) {
   s->add_option("--out", opts->o.out, "output folder (default sweep_out)");
   s->add_flag("--quiet", opts->o.quiet, "no per-run lines");
   s->add_flag("--fixed-dt", opts->o.fixed_dt, "psd_cut: keep the scene's time step (default: dt follows the smallest d_min)");
+  s->add_option("--settle", opts->o.settle_s, "lift_speed: s of settling after the lift, kept at every speed (default 1)");
   s->add_option("--save", opts->o.save, "folder for each run's final state (<vary>_<value>_seed<S>.h5 + .xmf)");
   s->add_option("--jobs", opts->o.jobs, "runs at once, one thread each (default 1: one run with the OpenMP threads)");
   s->add_option("--runs", opts->o.runs, "folder of finished-run records, read back by a rerun (default <out>/runs)");

@@ -66,6 +66,33 @@ void cut_psd(model::SceneDoc& d, const std::string& scene, double cut) {
   }
 }
 
+// The walls lifted at a constant speed: those whose velocity has a positive z component.
+std::vector<std::size_t> lifted_walls(const model::SceneDoc& d) {
+  std::vector<std::size_t> w;
+  for (std::size_t i = 0; i < d.size("wall"); ++i)
+    if (d.size(fmt::format("wall.{}.velocity", i)) == 3 && d.number(fmt::format("wall.{}.velocity.2", i)) > 0) w.push_back(i);
+  if (w.empty()) throw InputError(d.path(), 0, "wall.velocity", "--vary lift_speed needs a [[wall]] lifted (velocity z > 0)");
+  return w;
+}
+
+double lift_speed(const model::SceneDoc& d) { return d.number(fmt::format("wall.{}.velocity.2", lifted_walls(d).front())); }
+
+// Every lifted wall at `v` (m/s, upwards), and end_time stretched so that the lift covers the same height
+// while the settling after it keeps its length: end = start + (end0 - start - settle) v0 / v + settle
+// (start: the first lifted wall's move_start, 0 if none; settle in s).
+void set_lift_speed(model::SceneDoc& d, double v, double settle) {
+  if (!(v > 0)) throw InputError(d.path(), 0, "lift_speed", fmt::format("{:g} m/s must be positive", v));
+  const std::vector<std::size_t> walls = lifted_walls(d);
+  const double v0 = lift_speed(d);
+  const std::string start_key = fmt::format("wall.{}.move_start", walls.front());
+  const double start = d.has(start_key) ? d.number(start_key) : 0.0;
+  const double end0 = std::stod(d.get("end_time"));
+  if (!(settle >= 0 && settle < end0 - start))
+    throw InputError(d.path(), 0, "--settle", fmt::format("{:g} s must be >= 0 and shorter than end_time - move_start", settle));
+  for (std::size_t w : walls) d.set_number(fmt::format("wall.{}.velocity.2", w), v);
+  d.set("end_time", lit(start + (end0 - start - settle) * v0 / v + settle));
+}
+
 }  // namespace
 
 model::SceneDoc at_value(const model::SceneDoc& base, const SweepOptions& o, double value) {
@@ -83,8 +110,10 @@ model::SceneDoc at_value(const model::SceneDoc& base, const SweepOptions& o, dou
     const double d0 = smallest_d_min(base), d1 = smallest_d_min(d);
     if (!o.fixed_dt && d0 > 0 && d1 > 0)
       d.set("time_step", lit(std::stod(base.get("time_step")) * d1 / d0));
+  } else if (o.vary == "lift_speed") {
+    set_lift_speed(d, value, o.settle_s);
   } else {
-    throw InputError("", 0, "--vary", "'" + o.vary + "' is not one of dt, youngs_modulus, psd_cut");
+    throw InputError("", 0, "--vary", "'" + o.vary + "' is not one of dt, youngs_modulus, psd_cut, lift_speed");
   }
   return d;
 }
@@ -97,6 +126,10 @@ std::vector<double> default_ladder(const model::SceneDoc& base, const SweepOptio
   } else if (o.vary == "youngs_modulus") {
     const double e0 = std::stod(base.get("material." + material_name(base, o) + ".youngs_modulus"));
     for (int k = o.levels - 1; k >= 0; --k) v.push_back(e0 / std::pow(10.0, k));
+  } else if (o.vary == "lift_speed") {
+    // Fast -> the scene's speed (the reference, as the thesis lifted).
+    const double v0 = lift_speed(base);
+    for (int k = o.levels - 1; k >= 0; --k) v.push_back(v0 * std::pow(2.0, k));
   } else if (o.vary == "psd_cut") {
     std::vector<double> cuts;
     for (std::size_t f = 0; f < base.size("factory"); ++f)
@@ -374,6 +407,10 @@ std::string chosen_overrides(const model::SceneDoc& base, const SweepOptions& o,
   if (o.vary == "youngs_modulus") {
     const std::string key = "material." + material_name(base, o) + ".youngs_modulus";
     ov << key << " = " << d.get(key) << "\n";
+  }
+  if (o.vary == "lift_speed") {
+    for (std::size_t w : lifted_walls(base)) ov << fmt::format("wall.{0}.velocity = {1}\n", w, d.get(fmt::format("wall.{}.velocity", w)));
+    ov << "end_time = " << d.get("end_time") << "\n";
   }
   ov << "time_step = " << d.get("time_step") << "\n";
   return ov.str();

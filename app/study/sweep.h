@@ -13,6 +13,10 @@
 //                  dt = dt0 x d_min(cut) / d_min(scene), so every cut runs at the same fraction of its own
 //                  Rayleigh time (T_R is proportional to r), as the thesis's per-cut "optimal" steps did;
 //                  `fixed_dt` keeps dt0 instead
+//   lift_speed     every [[wall]] lifted (velocity z > 0) at this speed (m/s); end_time stretched so that the
+//                  lift covers the same height and the settling after it (`settle_s`) keeps its length,
+//                  end = move_start + (end0 - move_start - settle) v0 / v + settle; default values
+//                  v0 2^(levels-1) .. v0 (fast -> the scene's speed, the reference); the time step is kept
 // --values replaces the default ladder (given coarse -> fine).
 //
 // A run that fails (pastemix::RuntimeFailure: a blow-up, a jammed funnel, a pile that cannot be measured)
@@ -36,7 +40,7 @@
 namespace pastemix::app::study {
 
 struct SweepOptions {
-  std::string vary;               // dt | youngs_modulus | psd_cut
+  std::string vary;               // dt | youngs_modulus | psd_cut | lift_speed
   std::string qoi;
   std::vector<double> values;     // empty: default ladder
   int levels = 4;
@@ -46,6 +50,7 @@ struct SweepOptions {
   std::filesystem::path out = "sweep_out";
   bool quiet = false;
   bool fixed_dt = false;          // psd_cut: keep the scene's time step at every cut
+  double settle_s = 1.0;          // lift_speed: s of the run after the lift, kept at every speed
   std::filesystem::path save;     // non-empty: each run's final state as <save>/<vary>_<value>_seed<S>.h5/.xmf
   int jobs = 1;                   // runs at once (each one thread when > 1)
   // Finished runs are kept here (app/study/run_cache.h) and read back by a rerun: a killed or repeated

@@ -63,7 +63,7 @@ RunRecord compute(const Task& t, const StudyIo& io, const RunCache& cache, From&
 class Runner {
  public:
   Runner(const std::vector<Task>& tasks, const StudyIo& io, TaskCounts& counts)
-      : tasks_(tasks), io_(io), counts_(counts), cache_(io.records), out_(tasks.size()), have_(tasks.size(), false) {}
+      : tasks_(tasks), io_(io), counts_(counts), cache_(io.records), out_(tasks.size()) {}
 
   std::vector<Finished> run() {
     const int rank = io_.ranks ? io_.ranks->rank() : 0, size = io_.ranks ? io_.ranks->size() : 1;
@@ -129,7 +129,6 @@ class Runner {
   void done(std::size_t i, const RunRecord& r, From from) {
     std::lock_guard<std::mutex> g(lock_);
     out_[i] = {r, from};
-    have_[i] = true;
     ++(from == From::ran ? counts_.ran : from == From::resumed ? counts_.resumed : from == From::disk ? counts_.disk
        : from == From::record ? counts_.record : counts_.ledger);
     // Array jobs (task_index) never append: many writers, one file; the gathering run does.
@@ -196,7 +195,6 @@ class Runner {
   TaskCounts& counts_;
   RunCache cache_;
   std::vector<Finished> out_;
-  std::vector<bool> have_;
   std::mutex lock_;
 };
 
