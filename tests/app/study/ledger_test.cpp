@@ -86,7 +86,7 @@ TEST_CASE("ledger: rows read back every bit, failures with their reason, a key a
   CHECK_FALSE(back.find("0000000000000000"));
 }
 
-TEST_CASE("ledger: a bad row is an error naming file, line and column; a torn last line is dropped") {
+TEST_CASE("ledger: a bad row is an error naming file, line and column, and a torn last line is dropped") {
   const fs::path d = fresh("bad");
   const std::string good = "0123456789abcdef,s,t,done,1.5,1,2,3,e,\n";
   auto write = [&](const std::string& name, const std::string& text) {

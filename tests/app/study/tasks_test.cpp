@@ -4,7 +4,7 @@
 //    checkpoint) and rerun: nothing finished is recomputed, the interrupted run continues from its
 //    checkpoint, and the QoIs are those of an uninterrupted study, bit for bit;
 //  - the rolling-resistance calibration's (mu_r, seed) tasks go into its ledger and are never rerun;
-//  - `--task-index` (a Slurm array job) runs one task and records it; the gathering run reads it back;
+//  - `--task-index` (a Slurm array job) runs one task and records it, and the gathering run reads it back;
 //  - the Slurm script passes `bash -n` and runs one task.
 #include "app/study/tasks.h"
 
@@ -131,7 +131,7 @@ TEST_CASE("a study killed mid-run resumes: nothing finished is redone, the run i
   CHECK(third.output.find("runs: 0 done now, 6 read back") != std::string::npos);
 }
 
-TEST_CASE("calibrate rolling-resistance: every (mu_r, seed) a task in the ledger; a rerun runs none of them") {
+TEST_CASE("calibrate rolling-resistance: every (mu_r, seed) a task in the ledger, and a rerun runs none of them") {
   // The tiny pile is too small for a trustworthy angle (some runs fail as "no pile", which is an outcome
   // too): this checks the command's tasks, not the physics.
   const fs::path d = fresh("rolling");
@@ -150,7 +150,7 @@ TEST_CASE("calibrate rolling-resistance: every (mu_r, seed) a task in the ledger
   CHECK(angles(d / "out" / "points.csv") == before);
 }
 
-TEST_CASE("--task-index runs one task and records it; the gathering run reads it back and writes the ledger") {
+TEST_CASE("--task-index runs one task and records it, and the gathering run reads it back and writes the ledger") {
   const fs::path d = fresh("index");
   const std::string sweep = fmt::format("sweep '{}' --vary dt --qoi peak_force --values 1.28e-5 6.4e-6 3.2e-6 --out '{}'",
                                         test::source_path("datasets/scenes/hertz_impact_m1.toml"), (d / "out").string());
