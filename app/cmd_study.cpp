@@ -5,6 +5,7 @@
 // (app/study/calibrate.h); `pastemix calibrate rheology --case 2 ...` (app/study/calibrate_rheology.h).
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -12,6 +13,9 @@
 #include "base/stats.h"
 #include "app/study/calibrate.h"
 #include "app/study/calibrate_rheology.h"
+#include "app/study/ledger.h"
+#include "app/study/ranks.h"
+#include "app/study/tasks.h"
 #include "base/error.h"
 #include "base/params.h"
 #include "lab/reduce.h"
@@ -22,6 +26,64 @@
 
 namespace pastemix::app {
 namespace {
+
+// The options every study shares: its ledger, MPI, one task of a Slurm array, checkpoints.
+struct StudyCli {
+  std::string ledger;
+  bool mpi = false;
+  std::optional<long> task_index;
+};
+
+void add_study_options(CLI::App* c, StudyCli& s) {
+  c->add_option("--ledger", s.ledger, "CSV of finished tasks (keys and QoIs), read at start and appended as tasks "
+                                      "finish (commit it: docs/studies/<name>.csv)");
+  c->add_flag("--mpi", s.mpi, "spread the tasks over the MPI ranks (mpirun -np K pastemix ...; implied under mpirun)");
+  c->add_option("--task-index", s.task_index, "run task N of the list alone and record it (a Slurm array index; "
+                                              "the same command without it gathers)");
+}
+
+// The ranks and (on rank 0) the ledger of a study.
+struct StudySetup {
+  const study::Ranks* ranks = nullptr;
+  std::unique_ptr<study::Ledger> ledger;
+};
+
+StudySetup setup_study(const StudyCli& s) {
+  StudySetup st;
+  st.ranks = &study::Ranks::start(s.mpi);
+  if (!s.ledger.empty() && st.ranks->root()) {
+    try {
+      st.ledger = std::make_unique<study::Ledger>(s.ledger);
+    } catch (const InputError& e) {
+      if (st.ranks->size() > 1) {
+        fmt::print(stderr, "error: {}\n", e.what());
+        st.ranks->abort(2);
+      }
+      throw;
+    }
+    const std::size_t other = st.ledger->other_engine(lab::software_version());
+    fmt::print(stderr, "ledger {}: {} finished task(s){}\n", s.ledger, st.ledger->size(),
+               other ? fmt::format(", {} of them by another engine than {}", other, lab::software_version()) : "");
+  }
+  return st;
+}
+
+// Runs a study's body: a --task-index run ends with its message (exit 0); an input error on one rank of
+// several ends them all.
+template <class F>
+void guarded(const study::Ranks& ranks, F&& body) {
+  try {
+    body();
+  } catch (const study::TaskIndexDone& d) {
+    fmt::print("{}\n", d.message);
+  } catch (const InputError& e) {
+    if (ranks.size() > 1) {
+      fmt::print(stderr, "error (rank {}): {}\n", ranks.rank(), e.what());
+      ranks.abort(2);
+    }
+    throw;
+  }
+}
 
 // Rewrites the parameter store (parameters.toml, lab.h5 beside it) with the calibration record: `lab reduce`
 // of the store's own dataset with --rheology-calibration, so the store is never edited by hand.
@@ -52,6 +114,7 @@ void register_rheology(CLI::App* cal) {
     std::vector<double> target;
     double layer_thickness = 0.03;
     bool no_store = false;
+    StudyCli study;
   };
   auto c = std::make_shared<Opts>();
   CLI::App* r = cal->add_subcommand("rheology", "the paste-rheology model's shape parameter from a mixing case's "
@@ -79,8 +142,14 @@ void register_rheology(CLI::App* cal) {
   r->add_option("--checkpoint-every", c->o.checkpoint_wall_s,
                 "wall-clock s between checkpoints of a run in progress; a rerun continues it (default 300, 0: none)")
       ->check(CLI::NonNegativeNumber);
+  add_study_options(r, c->study);
   r->callback([c] {
     auto& o = c->o;
+    StudySetup st = setup_study(c->study);
+    o.ranks = st.ranks;
+    o.ledger = st.ledger.get();
+    o.task_index = c->study.task_index;
+    o.engine = lab::software_version();
     const std::string scene = c->scene.empty() ? fmt::format("datasets/scenes/mixing_case{}.toml", o.case_id) : c->scene;
     o.out = c->out.empty() ? fmt::format("out/calibrate/rheology_case{}", o.case_id) : c->out;
     o.resume_with = fmt::format("the same `pastemix calibrate rheology --case {} --out {}` command", o.case_id,
@@ -89,7 +158,18 @@ void register_rheology(CLI::App* cal) {
     if (!(c->layer_thickness > 0.0)) throw InputError("--layer-thickness", 0, "", "must be positive (m)");
     o.layout.layer_thickness = c->layer_thickness;
     const model::SceneDoc base = model::scene_with_overrides(scene, c->overrides, c->sets);
-    const auto res = study::calibrate_rheology(base, o);
+    study::RheologyCalResult res;
+    bool index_run = true;
+    guarded(*st.ranks, [&] {
+      res = study::calibrate_rheology(base, o);
+      index_run = false;
+    });
+    if (!index_run && o.task_index) fmt::print("task {}: every task of the study is finished; the gathering run (the same command without --task-index) "
+                 "writes the ledger and the outputs\n", *o.task_index);
+    if (index_run || o.task_index || !st.ranks->root()) {
+      if (!res.fit.ok && !index_run && !o.task_index) throw RuntimeFailure("calibrate rheology: no result: " + res.fit.why);
+      return;
+    }
     std::string command = fmt::format("pastemix calibrate rheology --case {} --family {} --seeds {} --scene {} --out {}",
                                       o.case_id, lab::rheology::to_string(res.model.family), o.seeds, scene,
                                       o.out.string());
@@ -109,14 +189,28 @@ struct SweepCli {
   std::vector<std::string> sets;
   std::string overrides;
   bool no_cache = false;
+  StudyCli study;
 };
 
 void run_sweep(SweepCli& c) {
   if (c.o.runs.empty() && !c.no_cache) c.o.runs = c.o.out / "runs";
   if (c.no_cache) c.o.runs.clear();
   c.o.engine = lab::software_version();
+  StudySetup st = setup_study(c.study);
+  c.o.ranks = st.ranks;
+  c.o.ledger = st.ledger.get();
+  c.o.task_index = c.study.task_index;
   const model::SceneDoc base = model::scene_with_overrides(c.scene, c.overrides, c.sets);
-  const study::SweepResult r = study::sweep(base, c.o);
+  c.o.resume_with = "the same `pastemix sweep` command";
+  study::SweepResult r;
+  bool index_run = true;
+  guarded(*st.ranks, [&] {
+    r = study::sweep(base, c.o);
+    index_run = false;
+  });
+  if (!index_run && c.o.task_index) fmt::print("task {}: every task of the study is finished; the gathering run (the same command without --task-index) "
+                 "writes the ledger and the outputs\n", *c.o.task_index);
+  if (index_run || c.o.task_index || !st.ranks->root()) return;
   fmt::print("{}", r.table);
   if (!c.o.runs.empty())
     fmt::print("runs: {} done now, {} read back from {}\n", r.executed, r.read_back, c.o.runs.string());
@@ -131,8 +225,8 @@ void register_sweep(CLI::App& app) {
   for (const auto& q : study::qoi_registry()) qoi_help += " " + q.name + " (" + q.unit + ")";
   CLI::App* s = app.add_subcommand("sweep", "speed against error: run a scene over a ladder of one setting");
   s->add_option("scene", opts->scene, "scene file (TOML)")->required();
-  s->add_option("--vary", opts->o.vary, "dt | youngs_modulus | psd_cut")->required()->check(
-      CLI::IsMember({"dt", "youngs_modulus", "psd_cut"}));
+  s->add_option("--vary", opts->o.vary, "dt | youngs_modulus | psd_cut | lift_speed")->required()->check(
+      CLI::IsMember({"dt", "youngs_modulus", "psd_cut", "lift_speed"}));
   s->add_option("--qoi", opts->o.qoi, qoi_help)->required();
   s->add_option("--values", opts->o.values, "ladder values, coarse -> fine (default: see app/study/sweep.h)");
   s->add_option("--levels", opts->o.levels, "default-ladder length (default 4)");
@@ -144,72 +238,80 @@ void register_sweep(CLI::App& app) {
   s->add_option("--out", opts->o.out, "output folder (default sweep_out)");
   s->add_flag("--quiet", opts->o.quiet, "no per-run lines");
   s->add_flag("--fixed-dt", opts->o.fixed_dt, "psd_cut: keep the scene's time step (default: dt follows the smallest d_min)");
+  s->add_option("--settle", opts->o.settle_s, "lift_speed: s of settling after the lift, kept at every speed (default 1)");
   s->add_option("--save", opts->o.save, "folder for each run's final state (<vary>_<value>_seed<S>.h5 + .xmf)");
   s->add_option("--jobs", opts->o.jobs, "runs at once, one thread each (default 1: one run with the OpenMP threads)");
   s->add_option("--runs", opts->o.runs, "folder of finished-run records, read back by a rerun (default <out>/runs)");
   s->add_flag("--no-cache", opts->no_cache, "keep no run records and read none: every run is done");
+  s->add_option("--checkpoint-every", opts->o.checkpoint_wall_s,
+                "wall-clock s between checkpoints of a run in progress (final-state QoIs); a rerun continues it "
+                "(default 300, 0: none)")->check(CLI::NonNegativeNumber);
+  add_study_options(s, opts->study);
   s->callback([opts] { run_sweep(*opts); });
 }
 
 struct RollingCli {
   std::string scene;
-  double target = 0.0, tol_deg = 0.5, mu_tol = 0.005;
+  study::RollingOptions o;
   std::vector<double> bracket;
-  int seeds = 1, max_evaluations = 8;
   std::vector<std::string> sets;
   std::string overrides;
-  std::string out = "out/calibrate/rolling_resistance";
-  bool no_cache = false;
+  StudyCli study;
 };
 
-void run_rolling_resistance(const RollingCli& c) {
+void run_rolling_resistance(RollingCli& c) {
+  auto& o = c.o;
+  if (o.values.empty() && c.bracket.size() != 2)
+    throw InputError("", 0, "--bracket", "give --bracket LO HI (or --values)");
+  if (c.bracket.size() == 2) o.lo = c.bracket[0], o.hi = c.bracket[1];
+  o.engine = lab::software_version();
+  o.resume_with = "the same `pastemix calibrate rolling-resistance` command";
+  StudySetup st = setup_study(c.study);
+  o.ranks = st.ranks;
+  o.ledger = st.ledger.get();
+  o.task_index = c.study.task_index;
   const model::SceneDoc base = model::scene_with_overrides(c.scene, c.overrides, c.sets);
-  const long seed0 = base.has("seed") ? std::stol(base.get("seed")) : 1;
-  const study::RunCache cache(c.no_cache ? std::filesystem::path{} : std::filesystem::path(c.out) / "runs");
-  const std::string engine = lab::software_version();
-  // The repose angle at mu_r (deg): mean and sd over the seeds, each pile read back from the cache if kept.
-  auto f = [&](double mu) {
-    std::vector<double> angles;
-    for (int k = 0; k < c.seeds; ++k) {
-      model::SceneDoc d = study::with_rolling_resistance(base, mu);
-      if (c.seeds > 1) d.set("seed", std::to_string(seed0 + k));
-      bool on_disk = false;
-      const auto r = study::cached_run_once(d, "repose_angle", cache,
-                                            fmt::format("rolling-resistance mu_r = {:.10g} seed {}", mu, seed0 + k),
-                                            engine, on_disk);
-      angles.push_back(r.qoi);
-      fmt::print(stderr, "  mu_r = {:.4f} seed {}: {:.2f} deg ({:.1f} s){}\n", mu, seed0 + k, r.qoi, r.wall_s,
-                 on_disk ? " (on disk)" : "");
-    }
-    const auto st = summarize(angles);
-    return study::Evaluation{mu, st.mean, c.seeds > 1 ? st.sd : 0.0};
-  };
-  const auto r = study::bracket_root(f, c.bracket[0], c.bracket[1], c.target, c.tol_deg, c.mu_tol,
-                                     c.max_evaluations);
-  fmt::print("rolling law: {}; target {:.2f} deg\n", base.get("contact.rolling"), c.target);
-  fmt::print("  {:>8} | {:>10} | {:>6}\n", "mu_r", "angle deg", "sd");
-  for (const auto& e : r.history) fmt::print("  {:>8.4f} | {:>10.2f} | {:>6.2f}\n", e.mu, e.angle, e.sd);
-  fmt::print("mu_r = {:.4f}: angle {:.2f} +- {:.2f} deg (seed sd, {} seed(s)), objective |angle - target| = "
-             "{:.2f} deg{}\n", r.mu, r.best.angle, r.best.sd, c.seeds, std::abs(r.best.angle - c.target),
-             r.converged ? "" : " (NOT within --tol-deg: more evaluations or seeds needed)");
+  study::RollingResult r;
+  bool index_run = true;
+  guarded(*st.ranks, [&] {
+    r = study::calibrate_rolling(base, o);
+    index_run = false;
+  });
+  if (!index_run && o.task_index) fmt::print("task {}: every task of the study is finished; the gathering run (the same command without --task-index) "
+                 "writes the ledger and the outputs\n", *o.task_index);
+  if (index_run || o.task_index) return;
+  if (st.ranks->root()) {
+    study::write_rolling_outputs(r, o);
+    fmt::print("{}", study::rolling_table(r, o));
+    fmt::print("wrote {0}/points.csv, {0}/table.txt\n", o.out.string());
+  }
+  if (!r.answer.ok) throw RuntimeFailure("calibrate rolling-resistance: no result: " + r.answer.why);
 }
 
 void register_rolling_resistance(CLI::App* cal) {
   auto c = std::make_shared<RollingCli>();
   CLI::App* rr = cal->add_subcommand("rolling-resistance",
-                                     "mu_r (all [[interaction]]s) so that the simulated repose angle = the measured");
+                                     "mu_r (all [[interaction]]s) so that the simulated repose angle = the measured, "
+                                     "from a monotone surrogate of angle(mu_r) over every run");
   rr->add_option("scene", c->scene, "repose scene (e.g. datasets/scenes/repose_ch5.toml)")->required();
-  rr->add_option("--target", c->target, "measured repose angle, deg (Table 6.1)")->required();
-  rr->add_option("--bracket", c->bracket, "mu_r lo hi; the target must lie between their angles")->expected(2)->required();
-  rr->add_option("--tol-deg", c->tol_deg, "stop when |angle - target| <= this (deg, default 0.5)");
-  rr->add_option("--mu-tol", c->mu_tol, "stop when the bracket is narrower (default 0.005)");
-  rr->add_option("--seeds", c->seeds, "runs per mu_r (default 1)");
-  rr->add_option("--max-evaluations", c->max_evaluations, "default 8");
+  rr->add_option("--target", c->o.target, "measured repose angle, deg (Table 6.1)")->required();
+  rr->add_option("--target-sd", c->o.target_sd, "the measured angle's sd, deg (added to mu_r's sd; default 0)");
+  rr->add_option("--bracket", c->bracket, "mu_r lo hi: the range of the initial points")->expected(2);
+  rr->add_option("--points", c->o.points, "initial points evenly over the bracket (default 5)");
+  rr->add_option("--values", c->o.values, "initial mu_r points (replace the even grid)");
+  rr->add_option("--seeds", c->o.seeds, "runs per mu_r, the same seeds at every mu_r (default 3)");
+  rr->add_option("--refine", c->o.refine, "rounds adding mu* -+ max(2 sd, 5 % of the range) (default 1)");
+  rr->add_option("--jobs", c->o.jobs, "runs at once, one thread each (default 1)");
   rr->add_option("--overrides", c->overrides, "file of key.path = value lines, applied before --set");
   rr->add_option("--set", c->sets, "scene override key.path=value");
-  rr->add_option("--out", c->out, "folder whose runs/ keeps every finished pile, read back by a rerun "
-                                  "(default out/calibrate/rolling_resistance)");
-  rr->add_flag("--no-cache", c->no_cache, "keep no run records and read none: every pile is run");
+  rr->add_option("--out", c->o.out, "folder whose runs/ keeps every finished pile, read back by a rerun "
+                                    "(default out/calibrate/rolling_resistance)");
+  rr->add_flag("--no-cache", c->o.no_cache, "keep no run records and read none (the ledger is still used)");
+  rr->add_flag("--quiet", c->o.quiet, "no per-run lines");
+  rr->add_option("--checkpoint-every", c->o.checkpoint_wall_s,
+                 "wall-clock s between checkpoints of a pile in progress; a rerun continues it (default 300, 0: none)")
+      ->check(CLI::NonNegativeNumber);
+  add_study_options(rr, c->study);
   rr->callback([c] { run_rolling_resistance(*c); });
 }
 

@@ -127,6 +127,7 @@ RunSummary run_checked(const Scene& scene, const std::filesystem::path& out_dir,
   }
   world.check();
   if (opt.progress) std::fprintf(stderr, "\n");
+  if (opt.at_end) opt.at_end(world);
   r.stop.rule_at_rest = rule.at_rest;
   r.stop.fired = fired;
   r.stop.start = rule.start;

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <string>
 
 #include "model/scene.h"
@@ -24,6 +25,9 @@ struct RunOptions {
   double checkpoint_wall_s = 0.0;
   bool resume = false;
   std::string resume_with;
+  // Called once with the final state, after the loop and before the result is published: a study's
+  // quantity of interest of the final state (app/study), taken in the same run that writes the checkpoints.
+  std::function<void(const World&)> at_end;
 };
 
 struct RunSummary {

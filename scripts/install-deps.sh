@@ -5,6 +5,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev libceres-dev libhdf5-dev libfmt-dev doctest-dev libcli11-dev libtomlplusplus-dev
   python3-matplotlib python3-h5py python3-numpy
+  libopenmpi-dev openmpi-bin   # optional (app/study/ranks.h): studies over MPI ranks; the build works without
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -2,7 +2,7 @@
 #include "app/study/calibrate_rheology.h"
 
 #include <algorithm>
-#include <atomic>
+#include <map>
 #include <cmath>
 #include <mutex>
 #include <optional>
@@ -16,6 +16,7 @@
 #include "analysis/maps/motion.h"
 #include "analysis/maps/result_file.h"
 #include "analysis/score/lab_case.h"
+#include "app/study/tasks.h"
 #include "base/error.h"
 #include "base/stats.h"
 #include "model/output.h"
@@ -77,59 +78,86 @@ void summarise_point(CalPoint& p, const std::array<double, 3>& target) {
   p.J_se = sj2.sd * static_cast<double>(n - 1) / std::sqrt(static_cast<double>(n));
 }
 
-struct Task {
+struct SeedTask {
   std::size_t point, seed_index;
   model::SceneDoc doc;
 };
 
-// Runs (or reads back) every task; each finished run stays on disk under runs/<hash>.h5.
-void run_tasks(std::vector<CalPoint>& pts, std::vector<Task>& tasks, const RheologyCalOptions& o,
+// One (point, seed) run's layers (kg) from its result file OUT/runs/<hash>.h5: read back when there, else run
+// (continuing the checkpoint a kill left).
+RunRecord run_seed(const model::SceneDoc& doc, const fs::path& runs, const std::string& hash,
+                   const RheologyCalOptions& o, From& from) {
+  const fs::path h5 = runs / (hash + ".h5");
+  RunRecord r;
+  if (fs::exists(h5)) {
+    from = From::disk;
+  } else {
+    model::RunOptions ro;
+    ro.progress = false;
+    ro.stem = hash;
+    ro.checkpoint_wall_s = o.checkpoint_wall_s;
+    ro.resume_with = o.resume_with;
+    // A run killed part-way left its checkpoint: continue it rather than start again.
+    ro.resume = fs::exists(model::checkpoint_path(runs, hash));
+    if (ro.resume) from = From::resumed;
+    const model::Scene s = doc.load();
+    const model::RunSummary sum = model::run_scene(s, runs, ro);
+    r.wall_s = sum.wall_seconds;
+    r.work = static_cast<double>(sum.steps) * static_cast<double>(s.particles.size());
+    r.particles = s.particles.size();
+  }
+  const std::array<double, 3> l = layer_rock(h5, o.layout);
+  r.qoi = {l[0], l[1], l[2]};
+  return r;
+}
+
+// Runs (or finds) every task through the studies' one runner (tasks.h); each finished run stays on disk
+// under runs/<hash>.h5, and its layers go into the ledger.
+void run_tasks(std::vector<CalPoint>& pts, std::vector<SeedTask>& tasks, const RheologyCalOptions& o,
                const std::array<double, 3>& target, int& executed) {
   const fs::path runs = o.out / "runs";
   fs::create_directories(runs);
-  std::atomic<std::size_t> next{0};
-  std::atomic<int> ran{0};
-  std::mutex lock;
-  auto worker = [&] {
-    if (o.jobs > 1) omp_set_num_threads(1);
-    for (std::size_t i; (i = next++) < tasks.size();) {
-      Task& t = tasks[i];
-      CalPoint& p = pts[t.point];
-      SeedRun& sr = p.runs[t.seed_index];
-      const fs::path h5 = runs / (sr.hash + ".h5");
-      std::string failure;
-      try {
-        sr.cached = fs::exists(h5);
-        if (!sr.cached) {
-          model::RunOptions ro;
-          ro.progress = false;
-          ro.stem = sr.hash;
-          ro.checkpoint_wall_s = o.checkpoint_wall_s;
-          ro.resume_with = o.resume_with;
-          // A run killed part-way left its checkpoint: continue it rather than start again.
-          ro.resume = sr.resumed = fs::exists(model::checkpoint_path(runs, sr.hash));
-          model::run_scene(t.doc.load(), runs, ro);
-          ++ran;
-        }
-        sr.layers = layer_rock(h5, o.layout);
-      } catch (const RuntimeFailure& e) {
-        failure = e.what();
-      }
-      std::lock_guard<std::mutex> g(lock);
-      if (!failure.empty()) p.failure = fmt::format("seed {}: {}", sr.seed, failure);
-      if (!o.quiet)
-        fmt::print(stderr, "  shape {:.6g} seed {}: {}\n", p.shape, sr.seed,
-                   !failure.empty() ? "FAILED: " + failure
-                                    : fmt::format("layers {:.2f} / {:.2f} / {:.2f} g ({})", 1e3 * sr.layers[0],
-                                                  1e3 * sr.layers[1], 1e3 * sr.layers[2],
-                                                  sr.cached ? "on disk" : sr.resumed ? "resumed from its checkpoint" : "ran"));
+  std::vector<Task> list;
+  std::map<std::string, std::pair<std::size_t, std::size_t>> where;
+  for (const SeedTask& t : tasks) {
+    const SeedRun& sr = pts[t.point].runs[t.seed_index];
+    where[sr.hash] = {t.point, t.seed_index};
+    list.push_back({sr.hash, fmt::format("shape {:.10g} seed {}", pts[t.point].shape, sr.seed),
+                    [&t, &o, runs, hash = sr.hash](From& from) { return run_seed(t.doc, runs, hash, o, from); }});
+  }
+  StudyIo io;
+  io.study = fmt::format("calibrate rheology case {}", o.case_id);
+  io.engine = o.engine;
+  io.ledger = o.ledger;
+  io.jobs = o.jobs;
+  io.ranks = o.ranks;
+  io.task_index = o.task_index;
+  if (!o.quiet)
+    io.on_done = [&](const Task& t, const RunRecord& rec, From from) {
+      const auto [point, seed] = where.at(t.key);
+      fmt::print(stderr, "  shape {:.6g} seed {}: {}\n", pts[point].shape, pts[point].runs[seed].seed,
+                 rec.failed ? "FAILED: " + rec.failure
+                            : fmt::format("layers {:.2f} / {:.2f} / {:.2f} g ({})", 1e3 * rec.qoi.at(0),
+                                          1e3 * rec.qoi.at(1), 1e3 * rec.qoi.at(2), to_string(from)));
+    };
+  TaskCounts counts;
+  const std::vector<Finished> done = run_tasks(list, io, counts);
+  for (std::size_t i = 0; i < tasks.size(); ++i) {
+    CalPoint& p = pts[tasks[i].point];
+    SeedRun& sr = p.runs[tasks[i].seed_index];
+    const RunRecord& rec = done[i].outcome;
+    sr.cached = done[i].from == From::disk || done[i].from == From::ledger || done[i].from == From::record;
+    sr.resumed = done[i].from == From::resumed;
+    if (rec.failed) {
+      p.failure = fmt::format("seed {}: {}", sr.seed, rec.failure);
+    } else {
+      if (rec.qoi.size() != 3)
+        throw InputError(o.ledger ? o.ledger->path().string() : "", 0, "qoi",
+                         fmt::format("task {} has {} values, not the 3 layer masses", sr.hash, rec.qoi.size()));
+      sr.layers = {rec.qoi[0], rec.qoi[1], rec.qoi[2]};
     }
-  };
-  std::vector<std::thread> pool;
-  for (int j = 1; j < std::min<int>(o.jobs, static_cast<int>(tasks.size())); ++j) pool.emplace_back(worker);
-  worker();
-  for (auto& th : pool) th.join();
-  executed += ran;
+  }
+  executed += counts.computed();
   for (auto& p : pts)
     if (p.failure.empty() && !p.runs.empty()) summarise_point(p, target);
 }
@@ -150,7 +178,7 @@ double scene_solids(const model::SceneDoc& d) {
 }
 
 // Adds the points `shapes` (those not already there) with their seeds' scenes as tasks.
-void add_points(std::vector<CalPoint>& pts, std::vector<Task>& tasks, const std::vector<double>& shapes,
+void add_points(std::vector<CalPoint>& pts, std::vector<SeedTask>& tasks, const std::vector<double>& shapes,
                 const model::SceneDoc& base, const rh::Model& model, double cw, const RheologyCalOptions& o,
                 double min_gap) {
   const long seed0 = scene_seed(base);
@@ -334,7 +362,7 @@ RheologyCalResult calibrate_rheology(const model::SceneDoc& base, const Rheology
   std::vector<double> grid = o.values;
   if (grid.empty())
     for (int i = 0; i < o.points; ++i) grid.push_back(r.prior.lo + range * i / (o.points - 1));
-  std::vector<Task> tasks;
+  std::vector<SeedTask> tasks;
   add_points(r.points, tasks, grid, base, r.model, r.solids_fraction, o, gap);
   run_tasks(r.points, tasks, o, r.target, r.runs_executed);
   for (int round = 0; round < o.refine; ++round) {

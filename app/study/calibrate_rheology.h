@@ -33,6 +33,8 @@
 #include <vector>
 
 #include "analysis/maps/block_grid.h"
+#include "app/study/ledger.h"
+#include "app/study/ranks.h"
 #include "lab/rheology/paste_rheology.h"
 #include "model/scene_doc.h"
 
@@ -57,6 +59,10 @@ struct RheologyCalOptions {
   // a rerun after a kill continues it from there (bit-identical to an unbroken run: model/checkpoint.h).
   double checkpoint_wall_s = 300.0;
   std::string resume_with;                   // the command that resumes the calibration (stored in each checkpoint)
+  std::string engine;                        // software version (ledger rows)
+  Ledger* ledger = nullptr;                  // the study's ledger (ledger.h: layers per task); null: none
+  const Ranks* ranks = nullptr;              // MPI ranks; null: one process
+  std::optional<long> task_index;            // run this task of the current round alone (Slurm; tasks.h)
 };
 
 // One (point, seed) run.

@@ -2,6 +2,7 @@
 #include "app/study/run_cache.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "base/error.h"
 #include "base/hash.h"
@@ -48,7 +49,7 @@ std::optional<RunRecord> RunCache::find(const std::string& key) const {
     if (r.failed) {
       r.failure = t.string("failure");
     } else {
-      r.qoi = t.number("qoi");
+      r.qoi = t.numbers("qoi");
       r.wall_s = t.number("wall_s", Range::non_negative);
       r.work = t.number("work", Range::non_negative);
       r.particles = static_cast<std::size_t>(t.integer("particles"));
@@ -73,8 +74,8 @@ void RunCache::store(const std::string& key, const RunRecord& r, const std::stri
   if (r.failed)
     text += "failure = " + toml_string(r.failure) + "\n";
   else
-    text += fmt::format("qoi = {:.17g}\nwall_s = {:.6g}\nwork = {:.17g}\nparticles = {}\n", r.qoi, r.wall_s, r.work,
-                        r.particles);
+    text += fmt::format("qoi = [{:.17g}]\nwall_s = {:.6g}\nwork = {:.17g}\nparticles = {}\n", fmt::join(r.qoi, ", "),
+                        r.wall_s, r.work, r.particles);
   StagedOutput out;
   out.write_text(record_path(key), text);
   out.commit();

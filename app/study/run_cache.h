@@ -20,15 +20,18 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "model/scene_doc.h"
 
 namespace pastemix::app::study {
 
+// The outcome of one finished run (a study task): its QoI values or its failure, and its cost.
 struct RunRecord {
   bool failed = false;
   std::string failure;   // the RuntimeFailure's message when failed
-  double qoi = 0.0;      // the QoI's value (units of the QoI)
+  std::vector<double> qoi;  // the QoI's values (units of the study's QoI; one for sweep and rolling
+                            // resistance, the three layer masses in kg for the rheology calibration)
   double wall_s = 0.0;   // wall-clock seconds of the step loop when it ran
   double work = 0.0;     // particles x steps
   std::size_t particles = 0;

@@ -2,7 +2,7 @@
 #include "app/study/sweep.h"
 
 #include <algorithm>
-#include <atomic>
+#include <map>
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -17,6 +17,9 @@
 
 #include "app/study/qoi.h"
 #include "app/study/run_cache.h"
+#include "app/study/tasks.h"
+#include "model/checkpoint.h"
+#include "model/run.h"
 #include "base/error.h"
 #include "base/staged_output.h"
 #include "model/output.h"
@@ -63,6 +66,33 @@ void cut_psd(model::SceneDoc& d, const std::string& scene, double cut) {
   }
 }
 
+// The walls lifted at a constant speed: those whose velocity has a positive z component.
+std::vector<std::size_t> lifted_walls(const model::SceneDoc& d) {
+  std::vector<std::size_t> w;
+  for (std::size_t i = 0; i < d.size("wall"); ++i)
+    if (d.size(fmt::format("wall.{}.velocity", i)) == 3 && d.number(fmt::format("wall.{}.velocity.2", i)) > 0) w.push_back(i);
+  if (w.empty()) throw InputError(d.path(), 0, "wall.velocity", "--vary lift_speed needs a [[wall]] lifted (velocity z > 0)");
+  return w;
+}
+
+double lift_speed(const model::SceneDoc& d) { return d.number(fmt::format("wall.{}.velocity.2", lifted_walls(d).front())); }
+
+// Every lifted wall at `v` (m/s, upwards), and end_time stretched so that the lift covers the same height
+// while the settling after it keeps its length: end = start + (end0 - start - settle) v0 / v + settle
+// (start: the first lifted wall's move_start, 0 if none; settle in s).
+void set_lift_speed(model::SceneDoc& d, double v, double settle) {
+  if (!(v > 0)) throw InputError(d.path(), 0, "lift_speed", fmt::format("{:g} m/s must be positive", v));
+  const std::vector<std::size_t> walls = lifted_walls(d);
+  const double v0 = lift_speed(d);
+  const std::string start_key = fmt::format("wall.{}.move_start", walls.front());
+  const double start = d.has(start_key) ? d.number(start_key) : 0.0;
+  const double end0 = std::stod(d.get("end_time"));
+  if (!(settle >= 0 && settle < end0 - start))
+    throw InputError(d.path(), 0, "--settle", fmt::format("{:g} s must be >= 0 and shorter than end_time - move_start", settle));
+  for (std::size_t w : walls) d.set_number(fmt::format("wall.{}.velocity.2", w), v);
+  d.set("end_time", lit(start + (end0 - start - settle) * v0 / v + settle));
+}
+
 }  // namespace
 
 model::SceneDoc at_value(const model::SceneDoc& base, const SweepOptions& o, double value) {
@@ -80,8 +110,10 @@ model::SceneDoc at_value(const model::SceneDoc& base, const SweepOptions& o, dou
     const double d0 = smallest_d_min(base), d1 = smallest_d_min(d);
     if (!o.fixed_dt && d0 > 0 && d1 > 0)
       d.set("time_step", lit(std::stod(base.get("time_step")) * d1 / d0));
+  } else if (o.vary == "lift_speed") {
+    set_lift_speed(d, value, o.settle_s);
   } else {
-    throw InputError("", 0, "--vary", "'" + o.vary + "' is not one of dt, youngs_modulus, psd_cut");
+    throw InputError("", 0, "--vary", "'" + o.vary + "' is not one of dt, youngs_modulus, psd_cut, lift_speed");
   }
   return d;
 }
@@ -94,6 +126,10 @@ std::vector<double> default_ladder(const model::SceneDoc& base, const SweepOptio
   } else if (o.vary == "youngs_modulus") {
     const double e0 = std::stod(base.get("material." + material_name(base, o) + ".youngs_modulus"));
     for (int k = o.levels - 1; k >= 0; --k) v.push_back(e0 / std::pow(10.0, k));
+  } else if (o.vary == "lift_speed") {
+    // Fast -> the scene's speed (the reference, as the thesis lifted).
+    const double v0 = lift_speed(base);
+    for (int k = o.levels - 1; k >= 0; --k) v.push_back(v0 * std::pow(2.0, k));
   } else if (o.vary == "psd_cut") {
     std::vector<double> cuts;
     for (std::size_t f = 0; f < base.size("factory"); ++f)
@@ -148,35 +184,58 @@ RunCost run_once(const model::SceneDoc& doc, const std::string& qoi_name, const 
           s.particles.size()};
 }
 
-RunCost cached_run_once(const model::SceneDoc& doc, const std::string& qoi, const RunCache& cache,
-                        const std::string& what, const std::string& engine, bool& on_disk,
-                        const std::filesystem::path& save_h5) {
-  const std::string key = run_key(doc, qoi);
-  on_disk = false;
-  // With a saved state the file is part of the result: a run whose file is gone is done again.
-  if (auto rec = cache.find(key); rec && (save_h5.empty() || rec->failed || std::filesystem::exists(save_h5))) {
-    on_disk = true;
-    if (rec->failed) throw RuntimeFailure(rec->failure);
-    return RunCost{rec->qoi, rec->wall_s, rec->work, rec->particles};
+RunCost run_qoi_task(const model::SceneDoc& doc, const std::string& qoi_name, const TaskFiles& files, From& from) {
+  const QoiDef& q = find_qoi(qoi_name);
+  // A QoI over every step is taken in-process, step by step (the short analytic checks); so is every run
+  // of a study that keeps no files.
+  if (q.max_over_steps || files.dir.empty()) return run_once(doc, qoi_name, files.save_h5);
+  model::Scene s = doc.load();
+  const bool keep = !files.save_h5.empty();
+  const std::filesystem::path dir = keep ? files.save_h5.parent_path() : files.dir;
+  const std::string stem = keep ? files.save_h5.stem().string() : files.stem;
+  if (!keep) s.output_interval = s.energy_interval = std::max(s.end_time, s.config.dt);  // first and last state only
+  model::RunOptions ro;
+  ro.progress = false;
+  ro.stem = stem;
+  ro.checkpoint_wall_s = files.checkpoint_wall_s;
+  ro.resume_with = files.resume_with;
+  ro.resume = std::filesystem::exists(model::checkpoint_path(dir, stem));
+  if (ro.resume) from = From::resumed;
+  double value = 0.0;
+  std::string qoi_failure;
+  ro.at_end = [&](const model::World& w) {
+    try {
+      value = q.eval(w);
+    } catch (const RuntimeFailure& e) {
+      qoi_failure = e.what();
+    }
+  };
+  const model::RunSummary r = model::run_scene(s, dir, ro);
+  if (!keep) {
+    std::error_code ec;
+    std::filesystem::remove(r.h5, ec);
+    std::filesystem::remove(r.xmf, ec);
   }
-  RunRecord rec;
-  rec.engine = engine;
-  try {
-    const RunCost c = run_once(doc, qoi, save_h5);
-    rec.qoi = c.qoi, rec.wall_s = c.wall_s, rec.work = c.work, rec.particles = c.particles;
-    cache.store(key, rec, doc.path(), what);
-    return c;
-  } catch (const RuntimeFailure& e) {
-    rec.failed = true, rec.failure = e.what();
-    cache.store(key, rec, doc.path(), what);
-    throw;
-  }
+  if (r.failed_to_rest())
+    throw RuntimeFailure(fmt::format("end_time {:g} s reached before the rock came to rest: {:.4g} g moving faster "
+                                     "than {:g} m/s (a failed point: raise end_time)",
+                                     s.end_time, 1e3 * r.stop.last.moving_mass, s.stop.speed));
+  if (!qoi_failure.empty()) throw RuntimeFailure(qoi_failure);
+  return {value, r.wall_seconds, static_cast<double>(r.steps) * static_cast<double>(s.particles.size()),
+          s.particles.size()};
+}
+
+RunRecord record_of(const RunCost& c) {
+  RunRecord r;
+  r.qoi = {c.qoi};
+  r.wall_s = c.wall_s, r.work = c.work, r.particles = c.particles;
+  return r;
 }
 
 namespace {
 
 // One (ladder value, seed) run of a sweep; the scenes are built (and checked) before any run starts.
-struct Task {
+struct SweepRun {
   std::size_t point;
   long seed;
   model::SceneDoc doc;
@@ -192,9 +251,9 @@ void check_seeds_jobs(const model::SceneDoc& base, const SweepOptions& o) {
 }
 
 // The ladder x seeds as tasks; `time_step` gets each point's step (s).
-std::vector<Task> make_tasks(const model::SceneDoc& base, const SweepOptions& o, const std::vector<double>& values,
+std::vector<SweepRun> make_tasks(const model::SceneDoc& base, const SweepOptions& o, const std::vector<double>& values,
                              long seed0, std::vector<double>& time_step) {
-  std::vector<Task> tasks;
+  std::vector<SweepRun> tasks;
   for (std::size_t k = 0; k < values.size(); ++k) {
     const model::SceneDoc d = at_value(base, o, values[k]);
     time_step.push_back(std::stod(d.get("time_step")));
@@ -208,63 +267,79 @@ std::vector<Task> make_tasks(const model::SceneDoc& base, const SweepOptions& o,
 }
 
 // The per-run line on stderr.
-void print_task(const Task& t, const SweepOptions& o, double value, bool on_disk) {
-  const char* from = on_disk ? " (on disk)" : "";
-  if (t.cost)
+void print_task(const SweepOptions& o, double value, long seed, const RunRecord& r, From f) {
+  const std::string from = f == From::ran ? "" : fmt::format(" ({})", to_string(f));
+  if (!r.failed)
     fmt::print(stderr, "  {} = {:.4g} seed {}: {} = {:.6g} ({} particles, {:.0f} steps, {:.2f} s){}\n", o.vary,
-               value, t.seed, o.qoi, t.cost->qoi, t.cost->particles,
-               t.cost->work / static_cast<double>(t.cost->particles), t.cost->wall_s, from);
+               value, seed, o.qoi, r.qoi.at(0), r.particles, r.work / static_cast<double>(std::max<std::size_t>(1, r.particles)),
+               r.wall_s, from);
   else
-    fmt::print(stderr, "  {} = {:.4g} seed {}: FAILED: {}{}\n", o.vary, value, t.seed, t.failure, from);
+    fmt::print(stderr, "  {} = {:.4g} seed {}: FAILED: {}{}\n", o.vary, value, seed, r.failure, from);
 }
 
-// Runs every task, `o.jobs` at once (a queue); a RuntimeFailure is kept in its task. Counts the runs done now
-// and those read back from the run records into `r`.
-void run_tasks(std::vector<Task>& tasks, const SweepOptions& o, const std::vector<double>& values, SweepResult& r) {
-  const RunCache cache(o.runs);
-  std::atomic<std::size_t> next{0};
-  std::atomic<int> executed{0}, read_back{0};
-  std::mutex print;
-  auto worker = [&] {
-    if (o.jobs > 1) omp_set_num_threads(1);
-    for (std::size_t i; (i = next++) < tasks.size();) {
-      Task& t = tasks[i];
-      const double value = values[t.point];
-      const std::filesystem::path save =
-          o.save.empty() ? std::filesystem::path{}
-                         : o.save / fmt::format("{}_{:.6g}_seed{}.h5", o.vary, value, t.seed);
-      bool on_disk = false;
+// Runs (or finds) every task through the studies' one runner (tasks.h); a RuntimeFailure is kept in its task.
+void run_sweep_tasks(std::vector<SweepRun>& tasks, const SweepOptions& o, const std::vector<double>& values,
+                     SweepResult& r) {
+  std::vector<study::Task> list;
+  std::vector<std::filesystem::path> save;
+  for (const SweepRun& t : tasks) {
+    const double value = values[t.point];
+    save.push_back(o.save.empty() ? std::filesystem::path{}
+                                  : o.save / fmt::format("{}_{:.6g}_seed{}.h5", o.vary, value, t.seed));
+    TaskFiles files{o.runs, run_key(t.doc, o.qoi), o.checkpoint_wall_s, o.resume_with, save.back()};
+    list.push_back({files.stem, fmt::format("{} = {:.10g} seed {}", o.vary, value, t.seed),
+                    [&t, &o, files](From& from) { return record_of(run_qoi_task(t.doc, o.qoi, files, from)); }});
+  }
+  StudyIo io;
+  io.study = fmt::format("sweep {} {}", o.vary, o.qoi);
+  io.engine = o.engine;
+  io.records = o.runs;
+  io.ledger = o.ledger;
+  io.jobs = o.jobs;
+  io.ranks = o.ranks;
+  io.task_index = o.task_index;
+  std::map<std::string, std::size_t> index;
+  for (std::size_t i = 0; i < list.size(); ++i) index[list[i].key] = i;
+  if (!o.quiet)
+    io.on_done = [&](const study::Task& st, const RunRecord& rec, From f) {
+      const SweepRun& t = tasks[index.at(st.key)];
+      print_task(o, values[t.point], t.seed, rec, f);
+    };
+  TaskCounts counts;
+  const std::vector<Finished> done = run_tasks(list, io, counts);
+  for (std::size_t i = 0; i < tasks.size(); ++i) {
+    SweepRun& t = tasks[i];
+    const RunRecord& rec = done[i].outcome;
+    // With --save, the state file is part of the result: a task found finished whose file is gone is redone.
+    if (!o.save.empty() && !rec.failed && !std::filesystem::exists(save[i]) && done[i].from != From::ran &&
+        done[i].from != From::resumed) {
+      From from = From::ran;
       try {
-        t.cost = cached_run_once(
-            t.doc, o.qoi, cache,
-            fmt::format("sweep --vary {} = {:.10g} seed {} --qoi {}", o.vary, value, t.seed, o.qoi), o.engine,
-            on_disk, save);
+        t.cost = run_qoi_task(t.doc, o.qoi, {o.runs, list[i].key, o.checkpoint_wall_s, o.resume_with, save[i]}, from);
       } catch (const RuntimeFailure& e) {
         t.failure = e.what();
       }
-      ++(on_disk ? read_back : executed);
-      if (o.quiet) continue;
-      std::lock_guard<std::mutex> lock(print);
-      print_task(t, o, value, on_disk);
+      ++counts.ran;
+      if (!o.quiet) print_task(o, values[t.point], t.seed, t.cost ? record_of(*t.cost) : RunRecord{true, t.failure}, from);
+    } else if (rec.failed) {
+      t.failure = rec.failure;
+    } else {
+      t.cost = RunCost{rec.qoi.at(0), rec.wall_s, rec.work, rec.particles};
     }
-  };
-  std::vector<std::thread> pool;
-  for (int j = 1; j < std::min<int>(o.jobs, static_cast<int>(tasks.size())); ++j) pool.emplace_back(worker);
-  worker();
-  for (auto& th : pool) th.join();
-  r.executed = executed, r.read_back = read_back;
+  }
+  r.executed = counts.computed(), r.read_back = counts.read_back();
 }
 
 // One ladder point per value whose runs all succeeded (mean and sd over the seeds); a point with a failed run
 // goes to r.failed instead, and its time step is dropped from r.time_step.
-void gather_points(const std::vector<Task>& tasks, const SweepOptions& o, const std::vector<double>& values,
+void gather_points(const std::vector<SweepRun>& tasks, const SweepOptions& o, const std::vector<double>& values,
                    SweepResult& r) {
   std::vector<double> kept_dt;
   for (std::size_t k = 0; k < values.size(); ++k) {
     std::vector<double> q, wall;
     double work = 0.0;
     bool ok = true;
-    for (const Task& t : tasks) {
+    for (const SweepRun& t : tasks) {
       if (t.point != k) continue;
       if (!t.cost) {
         r.failed.push_back({values[k], t.seed, t.failure});
@@ -333,6 +408,10 @@ std::string chosen_overrides(const model::SceneDoc& base, const SweepOptions& o,
     const std::string key = "material." + material_name(base, o) + ".youngs_modulus";
     ov << key << " = " << d.get(key) << "\n";
   }
+  if (o.vary == "lift_speed") {
+    for (std::size_t w : lifted_walls(base)) ov << fmt::format("wall.{0}.velocity = {1}\n", w, d.get(fmt::format("wall.{}.velocity", w)));
+    ov << "end_time = " << d.get("end_time") << "\n";
+  }
   ov << "time_step = " << d.get("time_step") << "\n";
   return ov.str();
 }
@@ -348,8 +427,8 @@ SweepResult sweep(const model::SceneDoc& base, const SweepOptions& o) {
   if (values.empty()) throw InputError(base.path(), 0, "--values", "the ladder is empty");
   const long seed0 = base.has("seed") ? std::stol(base.get("seed")) : 1;
   check_seeds_jobs(base, o);
-  std::vector<Task> tasks = make_tasks(base, o, values, seed0, r.time_step);
-  run_tasks(tasks, o, values, r);
+  std::vector<SweepRun> tasks = make_tasks(base, o, values, seed0, r.time_step);
+  run_sweep_tasks(tasks, o, values, r);
   gather_points(tasks, o, values, r);
   choose_point(o, r);
   r.table = sweep_table(base, o, r);

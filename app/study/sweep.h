@@ -13,6 +13,10 @@
 //                  dt = dt0 x d_min(cut) / d_min(scene), so every cut runs at the same fraction of its own
 //                  Rayleigh time (T_R is proportional to r), as the thesis's per-cut "optimal" steps did;
 //                  `fixed_dt` keeps dt0 instead
+//   lift_speed     every [[wall]] lifted (velocity z > 0) at this speed (m/s); end_time stretched so that the
+//                  lift covers the same height and the settling after it (`settle_s`) keeps its length,
+//                  end = move_start + (end0 - move_start - settle) v0 / v + settle; default values
+//                  v0 2^(levels-1) .. v0 (fast -> the scene's speed, the reference); the time step is kept
 // --values replaces the default ladder (given coarse -> fine).
 //
 // A run that fails (pastemix::RuntimeFailure: a blow-up, a jammed funnel, a pile that cannot be measured)
@@ -22,17 +26,21 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "app/study/ladder.h"
+#include "app/study/ledger.h"
+#include "app/study/ranks.h"
 #include "app/study/run_cache.h"
+#include "app/study/tasks.h"
 #include "model/scene_doc.h"
 
 namespace pastemix::app::study {
 
 struct SweepOptions {
-  std::string vary;               // dt | youngs_modulus | psd_cut
+  std::string vary;               // dt | youngs_modulus | psd_cut | lift_speed
   std::string qoi;
   std::vector<double> values;     // empty: default ladder
   int levels = 4;
@@ -42,12 +50,20 @@ struct SweepOptions {
   std::filesystem::path out = "sweep_out";
   bool quiet = false;
   bool fixed_dt = false;          // psd_cut: keep the scene's time step at every cut
+  double settle_s = 1.0;          // lift_speed: s of the run after the lift, kept at every speed
   std::filesystem::path save;     // non-empty: each run's final state as <save>/<vary>_<value>_seed<S>.h5/.xmf
   int jobs = 1;                   // runs at once (each one thread when > 1)
   // Finished runs are kept here (app/study/run_cache.h) and read back by a rerun: a killed or repeated
   // sweep recomputes no finished (value, seed). Empty: nothing kept (the command's default is <out>/runs).
   std::filesystem::path runs;
   std::string engine;             // software version, written into each run record (provenance)
+  Ledger* ledger = nullptr;       // the study's ledger (ledger.h); null: none
+  const Ranks* ranks = nullptr;   // MPI ranks (ranks.h); null: one process
+  std::optional<long> task_index; // run this task alone (a Slurm array index; tasks.h)
+  // A run in progress writes <runs>/<key>.checkpoint.h5 every this many wall-clock seconds (0: never) and a
+  // rerun after a kill continues it (final-state QoIs; a QoI over every step is run in-process, whole).
+  double checkpoint_wall_s = 300.0;
+  std::string resume_with;        // the command that resumes the study (stored in each checkpoint)
 };
 
 // A ladder point at which at least one run failed (left out of the reference and the choice).
@@ -87,11 +103,19 @@ SweepResult sweep(const model::SceneDoc& base, const SweepOptions& o);
 // Writes <out>/sweep.csv, <out>/chosen_overrides.toml, <out>/sweep.png (PNG only if python works).
 void write_outputs(const SweepResult& r, const SweepOptions& o);
 
-// run_once through a run cache (app/study/run_cache.h): a recorded run is read back (on_disk = true), a
-// recorded failure is thrown again as the RuntimeFailure it was; a new run (or failure) is recorded, with
-// `what` (e.g. "mu_r = 0.3 seed 2") and `engine` (the software version) in the record.
-RunCost cached_run_once(const model::SceneDoc& doc, const std::string& qoi, const RunCache& cache,
-                        const std::string& what, const std::string& engine, bool& on_disk,
-                        const std::filesystem::path& save_h5 = {});
+// Where a study's run keeps its files: result and checkpoint as <dir>/<stem>.h5 / .checkpoint.h5 (deleted
+// once the QoI is taken), or, with `save_h5`, the result kept there (its checkpoint beside it).
+struct TaskFiles {
+  std::filesystem::path dir;     // empty: run in-process, no files, no checkpoint
+  std::string stem;              // the task's key
+  double checkpoint_wall_s = 0.0;
+  std::string resume_with;
+  std::filesystem::path save_h5;
+};
+// One run of a QoI study (sweep, rolling resistance): a final-state QoI runs through model::run_scene with
+// checkpoints, continuing a checkpoint left by a kill (`from` = resumed); a QoI over every step runs
+// in-process (run_once). Throws RuntimeFailure as run_once does.
+RunCost run_qoi_task(const model::SceneDoc& doc, const std::string& qoi, const TaskFiles& files, From& from);
+RunRecord record_of(const RunCost& c);
 
 }  // namespace pastemix::app::study

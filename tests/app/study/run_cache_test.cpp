@@ -64,12 +64,12 @@ TEST_CASE("run cache: a record reads back exactly what was stored, a failure wit
   const fs::path dir = fresh_dir("roundtrip");
   const RunCache cache(dir);
   RunRecord done;
-  done.qoi = 35780.738975427441, done.wall_s = 1.5, done.work = 50, done.particles = 2, done.engine = "test";
+  done.qoi = {35780.738975427441, 0.1}, done.wall_s = 1.5, done.work = 50, done.particles = 2, done.engine = "test";
   cache.store("0123456789abcdef", done, "s.toml", "dt = 1e-6 seed 1");
   const auto back = cache.find("0123456789abcdef");
   REQUIRE(back);
   CHECK_FALSE(back->failed);
-  CHECK(std::memcmp(&back->qoi, &done.qoi, sizeof(double)) == 0);  // %.17g: every bit
+  CHECK(std::memcmp(back->qoi.data(), done.qoi.data(), 2 * sizeof(double)) == 0);  // %.17g: every bit
   CHECK(back->work == 50);
   CHECK(back->particles == 2);
   RunRecord bad;
@@ -90,11 +90,11 @@ TEST_CASE("run cache: a damaged record, or one under another key's name, is igno
   std::ofstream(dir / "1111111111111111.toml") << "key = \"1111111111111111\"\nstatus = \"done\"\nqoi = \n";
   CHECK_FALSE(cache.find("1111111111111111"));
   RunRecord r;
-  r.qoi = 1.0;
+  r.qoi = {1.0};
   cache.store("2222222222222222", r, "s.toml", "x");
   fs::rename(dir / "2222222222222222.toml", dir / "3333333333333333.toml");
   CHECK_FALSE(cache.find("3333333333333333"));
-  std::ofstream(dir / "4444444444444444.toml") << "key = \"4444444444444444\"\nstatus = \"done\"\nqoi = 1\n"
+  std::ofstream(dir / "4444444444444444.toml") << "key = \"4444444444444444\"\nstatus = \"done\"\nqoi = [1]\n"
                                                    "wall_s = 0\nwork = 1\nparticles = 1\nbogus = 2\n";
   CHECK_FALSE(cache.find("4444444444444444"));  // an unknown key: not a record this code wrote
 }

@@ -133,3 +133,23 @@ TEST_CASE("pastemix sweep writes the table, CSV, override file - a bad --qoi is 
   CHECK(bad.output.find("--qoi") != std::string::npos);
   std::filesystem::remove_all(dir);
 }
+
+TEST_CASE("lift_speed lifts every lifted wall at the value and stretches end_time to the same lift height") {
+  const auto base = model::SceneDoc::parse_file(test::source_path("datasets/scenes/repose_ch5.toml"));
+  SweepOptions o;
+  o.vary = "lift_speed";
+  o.levels = 3;
+  const auto ladder = default_ladder(base, o);
+  REQUIRE(ladder.size() == 3);
+  CHECK(ladder[0] == doctest::Approx(0.04));
+  CHECK(ladder[2] == doctest::Approx(0.01));
+  const auto d = at_value(base, o, 0.04);
+  CHECK(d.number("wall.1.velocity.2") == 0.04);
+  CHECK(d.number("wall.1.velocity.0") == 0.0);
+  // 10 s: the lift from 0.02 s, then 1 s of settling (settle_s): 8.98 s of lift at 0.01 m/s; at 0.04 m/s the
+  // same height takes 8.98 / 4 s, and the settling keeps its second.
+  CHECK(std::stod(d.get("end_time")) == doctest::Approx(0.02 + 8.98 / 4 + 1.0).epsilon(1e-12));
+  CHECK(d.load().walls[1].velocity.z == 0.04);
+  const auto flat = model::SceneDoc::parse_file(test::source_path("datasets/scenes/hertz_impact_m1.toml"));
+  CHECK_THROWS_AS(at_value(flat, o, 0.02), InputError);
+}
