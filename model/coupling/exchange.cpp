@@ -38,8 +38,9 @@ Exchange::Exchange(const flow::Grid& g, double width_factor) : g_(g), c_(width_f
 }
 
 std::array<std::vector<Exchange::Row>, 3> Exchange::rows(const ExchangeParticles& p, const flow::Faces& face_mass,
-                                                          const flow::Faces* paste_mask) const {
+                                                          const flow::Faces* paste_mask, std::vector<double>* share) const {
   std::array<std::vector<Row>, 3> out;
+  if (share != nullptr) share->assign(p.centre.size(), 0.0);
   for (int c = 0; c < 3; ++c) out[c].resize(p.centre.size());
   std::array<std::vector<std::pair<long, double>>, 3> acc;
   for (std::size_t i = 0; i < p.centre.size(); ++i) {
@@ -60,12 +61,13 @@ std::array<std::vector<Exchange::Row>, 3> Exchange::rows(const ExchangeParticles
     for (int c = 0; c < 3; ++c) {
       std::sort(acc[c].begin(), acc[c].end(), [](const auto& a, const auto& b) { return a.first < b.first; });
       Row& r = out[c][i];
-      double sum = 0.0;
+      double sum = 0.0, unmasked = 0.0;
       for (std::size_t e = 0; e < acc[c].size(); ++e) {
         const long f = acc[c][e].first;
         double w = acc[c][e].second;
         while (e + 1 < acc[c].size() && acc[c][e + 1].first == f) w += acc[c][++e].second;
         if (wall_face(g_, c, f) || !(face_mass[c][f] > 0.0)) continue;
+        unmasked += w;
         if (paste_mask != nullptr) w *= std::clamp((*paste_mask)[c][f], 0.0, 1.0);
         if (w == 0.0) continue;
         r.face.push_back(f);
@@ -74,6 +76,7 @@ std::array<std::vector<Exchange::Row>, 3> Exchange::rows(const ExchangeParticles
       }
       if (sum > 0.0)
         for (double& w : r.w) w /= sum;
+      if (share != nullptr && unmasked > 0.0) (*share)[i] += sum / unmasked / 3.0;
     }
   }
   return out;
@@ -89,9 +92,7 @@ void Exchange::Row::spread(double amount, std::vector<double>& field) const {
   for (std::size_t e = 0; e < face.size(); ++e) field[face[e]] += w[e] * amount;
 }
 
-ExchangeStats Exchange::apply(double dt, const ExchangeParticles& p, std::vector<std::array<double, 3>>& v,
-                              flow::Faces& u, const flow::Faces& face_mass, const flow::Faces* paste_mask,
-                              std::vector<std::array<double, 3>>& impulse) const {
+void Exchange::check(const ExchangeParticles& p, const std::vector<std::array<double, 3>>& v) const {
   const std::size_t n = p.centre.size();
   if (p.diameter.size() != n || p.mass.size() != n || p.beta.size() != n || p.yield_force.size() != n || v.size() != n)
     throw std::invalid_argument("coupling exchange: particle arrays differ in length");
@@ -101,12 +102,61 @@ ExchangeStats Exchange::apply(double dt, const ExchangeParticles& p, std::vector
       throw std::invalid_argument(fmt::format("coupling exchange: particle {}: mass {} kg, beta {} kg/s, yield force {} N "
                                               "(need mass > 0, beta >= 0, yield force >= 0, finite)",
                                               i, p.mass[i], p.beta[i], p.yield_force[i]));
+}
+
+ExchangeStats Exchange::apply(double dt, const ExchangeParticles& p, std::vector<std::array<double, 3>>& v,
+                              flow::Faces& u, const flow::Faces& face_mass, const flow::Faces* paste_mask,
+                              std::vector<std::array<double, 3>>& impulse) const {
+  check(p, v);
   const Rows W = rows(p, face_mass, paste_mask);
   ExchangeStats st;
-  impulse.assign(n, {0.0, 0.0, 0.0});
+  impulse.assign(p.centre.size(), {0.0, 0.0, 0.0});
   yield_part(dt, p, W, v, u, face_mass, impulse, st);
   for (int c = 0; c < 3; ++c) drag_part(c, dt, p, W, v, u[c], face_mass[c], impulse, st);
   return st;
+}
+
+ExchangeStats Exchange::apply_after_subcycle(double dt, const ExchangeParticles& p, std::vector<std::array<double, 3>>& v,
+                                             flow::Faces& u, const flow::Faces& face_mass, const flow::Faces* paste_mask,
+                                             const std::vector<std::array<double, 3>>& yield_impulse,
+                                             std::vector<std::array<double, 3>>& impulse) const {
+  check(p, v);
+  if (yield_impulse.size() != p.centre.size())
+    throw std::invalid_argument("coupling exchange: yield impulses and particles differ in length");
+  const Rows W = rows(p, face_mass, paste_mask);
+  // The reaction of the whole sub-cycle at once: the faces stayed frozen while the particles stuck to them. A
+  // particle whose support holds no reacting face now passes its reaction to none: the sub-cycle gave it no
+  // yield part then (fluid_velocity's in_paste), unless the paste left its faces during the step (the last
+  // fluid step's alpha); then its share is dropped and reported (ExchangeStats::dropped_yield).
+  ExchangeStats st;
+  for (int c = 0; c < 3; ++c) {
+    std::vector<double> reaction(u[c].size(), 0.0);
+    for (std::size_t i = 0; i < p.centre.size(); ++i) {
+      if (yield_impulse[i][c] == 0.0) continue;
+      if (W[c][i].face.empty()) st.dropped_yield += std::abs(yield_impulse[i][c]);
+      else W[c][i].spread(-yield_impulse[i][c], reaction);
+    }
+    for (std::size_t f = 0; f < u[c].size(); ++f)
+      if (reaction[f] != 0.0) u[c][f] += reaction[f] / face_mass[c][f];
+  }
+  impulse.assign(p.centre.size(), {0.0, 0.0, 0.0});
+  for (int c = 0; c < 3; ++c) drag_part(c, dt, p, W, v, u[c], face_mass[c], impulse, st);
+  return st;
+}
+
+std::vector<std::array<double, 3>> Exchange::fluid_velocity(const ExchangeParticles& p, const flow::Faces& u,
+                                                            const flow::Faces& face_mass, const flow::Faces* paste_mask,
+                                                            std::vector<double>& paste_share) const {
+  const Rows W = rows(p, face_mass, paste_mask, &paste_share);
+  std::vector<std::array<double, 3>> out(p.centre.size(), {0.0, 0.0, 0.0});
+  for (std::size_t i = 0; i < p.centre.size(); ++i) {
+    if (W[0][i].face.empty() || W[1][i].face.empty() || W[2][i].face.empty()) {
+      paste_share[i] = 0.0;
+      continue;
+    }
+    for (int c = 0; c < 3; ++c) out[i][c] = W[c][i].at(u[c]);
+  }
+  return out;
 }
 
 void Exchange::yield_part(double dt, const ExchangeParticles& p, const Rows& W, std::vector<std::array<double, 3>>& v,

@@ -45,6 +45,7 @@ struct ExchangeStats {
   int iterations = 0;              // CG, summed over the components
   double relative_residual = 0.0;  // worst component's, at exit
   int stuck = 0;                   // particles that stuck in the yield part
+  double dropped_yield = 0.0;      // N s, |J_y| of sub-cycle yield reactions no reacting face could take
 };
 
 class Exchange {
@@ -57,6 +58,21 @@ class Exchange {
   ExchangeStats apply(double dt, const ExchangeParticles& p, std::vector<std::array<double, 3>>& v, flow::Faces& u,
                       const flow::Faces& face_mass, const flow::Faces* paste_mask,
                       std::vector<std::array<double, 3>>& impulse) const;
+  // The same after a DEM sub-cycle that ran the yield part itself (coupled_box.h: each DEM step sticks against
+  // the frozen fluid velocity `fluid_velocity` gave, and sums the impulses): the faces take the sub-cycle's
+  // summed yield reaction -W^T J_y (N s per particle in `yield_impulse`), then the velocity-dependent part runs
+  // as in apply. impulse (out) holds only that drag part. p.yield_force is not used.
+  ExchangeStats apply_after_subcycle(double dt, const ExchangeParticles& p, std::vector<std::array<double, 3>>& v,
+                                     flow::Faces& u, const flow::Faces& face_mass, const flow::Faces* paste_mask,
+                                     const std::vector<std::array<double, 3>>& yield_impulse,
+                                     std::vector<std::array<double, 3>>& impulse) const;
+  // The fluid velocity each particle's drag sees, W u (m/s), with the weights above, and its paste share: the
+  // masked weights' sum over the unmasked one (mean over the components), 0 where the particle's support holds
+  // no face that takes a reaction (no paste drag: u_p = 0 returned). The caller scales the drag by the share
+  // (a sphere half in the paste: half its drag, as the at-rest pass's submerged fraction).
+  std::vector<std::array<double, 3>> fluid_velocity(const ExchangeParticles& p, const flow::Faces& u,
+                                                    const flow::Faces& face_mass, const flow::Faces* paste_mask,
+                                                    std::vector<double>& paste_share) const;
 
   double tolerance = 1e-13;  // CG, relative residual
   int max_iterations = 2000;
@@ -69,9 +85,11 @@ class Exchange {
     void spread(double amount, std::vector<double>& field) const;    // field_f += w_f amount
   };
   using Rows = std::array<std::vector<Row>, 3>;
-  Rows rows(const ExchangeParticles& p, const flow::Faces& face_mass, const flow::Faces* paste_mask) const;
+  Rows rows(const ExchangeParticles& p, const flow::Faces& face_mass, const flow::Faces* paste_mask,
+            std::vector<double>* share = nullptr) const;
   // Stage 1 (yield, against the frozen u) and stage 2 for one component (implicit drag); both update v, u and
   // impulse, and give the faces exactly the opposite of what the particles get.
+  void check(const ExchangeParticles& p, const std::vector<std::array<double, 3>>& v) const;
   static void yield_part(double dt, const ExchangeParticles& p, const Rows& W, std::vector<std::array<double, 3>>& v,
                          flow::Faces& u, const flow::Faces& face_mass, std::vector<std::array<double, 3>>& impulse,
                          ExchangeStats& st);

@@ -1,0 +1,191 @@
+// SPDX-License-Identifier: MIT
+#include "model/coupling/coupled_flow.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "base/error.h"
+
+namespace pastemix::coupling {
+
+namespace {
+using Vec = std::array<double, 3>;
+
+double sphere_volume(double d) { return std::numbers::pi * d * d * d / 6.0; }  // m3
+
+// A face of component c on one of the box's walls or open sides (its impulse is not a pressure gradient).
+bool box_face(const flow::Grid& g, int c, const std::array<int, 3>& q) { return g.boundary_face(c, q[c]); }
+}  // namespace
+
+CoupledFlow::CoupledFlow(flow::FlowSolver& flow, CouplingSettings settings)
+    : flow_(flow), s_(settings), exchange_(flow.grid(), settings.width_factor) {}
+
+std::vector<double> CoupledFlow::fluid_fraction(const CoupledParticles& p) const {
+  std::vector<double> eps = solid_fraction(flow_.grid(), p.x, p.d, s_.width_factor);
+  for (std::size_t c = 0; c < eps.size(); ++c) {
+    eps[c] = 1.0 - eps[c];
+    if (!(eps[c] > 0.0))
+      throw RuntimeFailure(fmt::format("coupling: the particles fill cell {} (fluid fraction {:.4g}): the kernel "
+                                       "width c = {} is too narrow for this packing", c, eps[c], s_.width_factor));
+  }
+  return eps;
+}
+
+void CoupledFlow::start(const CoupledParticles& p) {
+  flow_.set_fluid_fraction(fluid_fraction(p));
+  x_flow_ = p.x;
+  pending_.assign(p.size(), {0.0, 0.0, 0.0});
+}
+
+Vec CoupledFlow::face_mean(const Stencil& s, const flow::Faces& f) const {
+  const flow::Grid& g = flow_.grid();
+  Vec out{};
+  if (s.empty()) return out;
+  for (int c = 0; c < 3; ++c) {
+    double sum = 0.0, weight = 0.0;
+    for (const auto& [k, wk] : s.axis[2])
+      for (const auto& [j, wj] : s.axis[1])
+        for (const auto& [i, wi] : s.axis[0]) {
+          const std::array<int, 3> q{i, j, k};
+          std::array<int, 3> hi = q;
+          hi[c] = g.periodic(c) ? (q[c] + 1) % g.n[c] : q[c] + 1;
+          const double half = 0.5 * wi * wj * wk;
+          for (const auto& face : {q, hi}) {
+            if (box_face(g, c, face)) continue;
+            sum += half * f[c][g.face(c, face)];
+            weight += half;
+          }
+        }
+    out[c] = weight > 0.0 ? sum / weight : 0.0;
+  }
+  return out;
+}
+
+std::array<double, 3> CoupledFlow::fluid_momentum() const {
+  const flow::Faces m = flow_.fluid_mass();
+  Vec out{};
+  for (int c = 0; c < 3; ++c)
+    for (std::size_t f = 0; f < m[c].size(); ++f) out[c] += m[c][f] * flow_.velocity()[c][f];
+  return out;
+}
+
+CycleStats CoupledFlow::cycle(CoupledParticles& p, int steps, double dt, const ExtraForce& extra) {
+  const std::size_t n = p.size();
+  if (p.v.size() != n || p.d.size() != n || p.m.size() != n || p.drag.size() != n || x_flow_.size() != n)
+    throw std::invalid_argument("coupling: particle arrays differ in length (or start() was not called)");
+  if (steps < 1 || !(dt > 0.0)) throw std::invalid_argument("coupling: a cycle needs steps >= 1 and dt > 0");
+  const flow::Grid& g = flow_.grid();
+  CycleStats st;
+  const std::vector<double> none(n, 0.0);
+  // 1. The DEM sub-cycle against the fluid as it is now (weights at the cycle's start).
+  const flow::Faces mass0 = flow_.fluid_mass(), mask0 = flow::face_means(g, flow_.alpha());
+  std::vector<double> share;
+  const std::vector<Vec> u_start =
+      exchange_.fluid_velocity({p.x, p.d, p.m, none, none}, flow_.velocity(), mass0, &mask0, share);
+  std::vector<Vec> yield(n, {0.0, 0.0, 0.0});
+  for (int k = 0; k < steps; ++k)
+    for (std::size_t i = 0; i < n; ++i) {
+      Vec F{};
+      const Vec fx = extra ? extra(i, p) : Vec{};
+      for (int c = 0; c < 3; ++c) F[c] = p.m[i] * s_.gravity[c] + pending_[i][c] / (steps * dt) + fx[c];
+      Vec& v = p.v[i];
+      for (int c = 0; c < 3; ++c) v[c] += F[c] / p.m[i] * dt;
+      const double bound = share[i] * p.drag[i].rest * dt;  // N s
+      if (bound > 0.0) {
+        const Vec w{v[0] - u_start[i][0], v[1] - u_start[i][1], v[2] - u_start[i][2]};
+        const double speed = std::hypot(w[0], w[1], w[2]);
+        if (speed > 0.0) {
+          const bool stick = p.m[i] * speed <= bound;
+          const double scale = stick ? p.m[i] : bound / speed;
+          st.stuck_steps += stick ? 1 : 0;
+          for (int c = 0; c < 3; ++c) {
+            const double J = -scale * w[c];
+            yield[i][c] += J;
+            v[c] += J / p.m[i];
+          }
+        }
+      }
+      for (int c = 0; c < 3; ++c) {
+        double& x = p.x[i][c];
+        x += v[c] * dt;
+        const double L = g.n[c] * g.h[c];
+        if (g.periodic(c) && (x < g.origin[c] || x >= g.origin[c] + L))  // only then: a wrap rounds
+          x = g.origin[c] + std::fmod(std::fmod(x - g.origin[c], L) + L, L);
+      }
+    }
+  // 2. The flow over the interval, eps_f linear in time between the start and the end positions.
+  const double T = steps * dt;
+  const std::vector<double> eps_start = flow_.fluid_fraction().empty() ? std::vector<double>(g.cell_count(), 1.0)
+                                                                       : flow_.fluid_fraction();
+  const std::vector<double> eps_end = fluid_fraction(p);
+  const int parts = std::max(1, static_cast<int>(std::ceil(T / flow_.next_time_step() * (1.0 - 1e-12))));
+  // The drag coefficients at the slip against the fluid at the end positions (u^n).
+  std::vector<double> beta(n, 0.0), share_end;
+  const std::vector<Vec> u_end =
+      exchange_.fluid_velocity({p.x, p.d, p.m, none, none}, flow_.velocity(), mass0, &mask0, share_end);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (share_end[i] == 0.0) continue;
+    const Stencil s = stencil(g, p.x[i], p.d[i], s_.width_factor);
+    const double eps = std::min(1.0, interpolate(g, s, eps_end) + own_solid_fraction(g, s, p.d[i]));
+    const double mu = interpolate(g, s, flow_.viscosity());
+    const double slip = std::hypot(p.v[i][0] - u_end[i][0], p.v[i][1] - u_end[i][1], p.v[i][2] - u_end[i][2]);
+    beta[i] = share_end[i] * drag_coefficients(p.drag[i], p.d[i], s_.width_factor, slip, eps, mu, g.h, s_.closure).beta;
+  }
+  const ExchangeParticles view{p.x, p.d, p.m, beta, none};
+  std::vector<Vec> impulse;
+  flow::Faces at_start, at_end;  // N s/m3: the pressure impulses, split by the positions their fluid mass had
+  for (int c = 0; c < 3; ++c) at_start[c].assign(g.face_count(c), 0.0), at_end[c].assign(g.face_count(c), 0.0);
+  const std::vector<Vec> no_yield(n, {0.0, 0.0, 0.0});
+  for (int j = 0; j < parts; ++j) {
+    const double s0 = static_cast<double>(j) / parts, s1 = static_cast<double>(j + 1) / parts;
+    std::vector<double> eps(eps_end);
+    if (j + 1 < parts)
+      for (std::size_t c = 0; c < eps.size(); ++c) eps[c] = eps_start[c] + s1 * (eps_end[c] - eps_start[c]);
+    flow_.set_next_fluid_fraction(std::move(eps));
+    flow_.set_exchange([&](double h, flow::Faces& u, const flow::Faces& mass) {
+      const flow::Faces mask = flow::face_means(g, flow_.alpha());
+      const flow::Faces before = u;
+      const ExchangeStats e = exchange_.apply_after_subcycle(h, view, p.v, u, mass, &mask, j == 0 ? yield : no_yield, impulse);
+      st.exchange_iterations += e.iterations;
+      st.dropped_yield += e.dropped_yield;
+      for (int c = 0; c < 3; ++c) {
+        for (std::size_t f = 0; f < u[c].size(); ++f) st.fluid_exchange[c] += mass[c][f] * (u[c][f] - before[c][f]);
+        for (std::size_t i = 0; i < n; ++i) {
+          st.particle_exchange[c] += impulse[i][c] + (j == 0 ? yield[i][c] : 0.0);
+          st.exchange_scale += std::abs(impulse[i][c]) + (j == 0 ? std::abs(yield[i][c]) : 0.0);
+        }
+      }
+    });
+    try {
+      flow_.step(T / parts);
+    } catch (...) {
+      flow_.set_exchange({});
+      throw;
+    }
+    flow_.set_exchange({});
+    ++st.flow_steps;
+    const flow::Faces& ic = flow_.continuity_impulse();
+    const flow::Faces& ip = flow_.pressure_impulse();
+    for (int c = 0; c < 3; ++c)
+      for (std::size_t f = 0; f < at_start[c].size(); ++f) {
+        const double a = ic[c].empty() ? 0.0 : ic[c][f], b = ip[c][f];
+        at_start[c][f] += (1.0 - s0) * a + (1.0 - s1) * b;
+        at_end[c][f] += s0 * a + s1 * b;
+      }
+  }
+  // 3. The pressure-gradient force of model A, pending for the next sub-cycle.
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec a = face_mean(stencil(g, x_flow_[i], p.d[i], s_.width_factor), at_start);
+    const Vec b = face_mean(stencil(g, p.x[i], p.d[i], s_.width_factor), at_end);
+    const double V = sphere_volume(p.d[i]);
+    for (int c = 0; c < 3; ++c) pending_[i][c] = -V * (a[c] + b[c]);
+  }
+  x_flow_ = p.x;
+  return st;
+}
+
+}  // namespace pastemix::coupling
