@@ -81,20 +81,43 @@ CycleStats CoupledFlow::cycle(CoupledParticles& p, int steps, double dt, const E
   const flow::Grid& g = flow_.grid();
   CycleStats st;
   const std::vector<double> none(n, 0.0);
-  // 1. The DEM sub-cycle against the fluid as it is now (weights at the cycle's start).
+  // 1. The DEM sub-cycle against the fluid as it is now (weights at the cycle's start): the drag coefficients
+  // at the slip v - W u^n and the particles' fluid fraction (drag.h), frozen over the sub-cycle.
   const flow::Faces mass0 = flow_.fluid_mass(), mask0 = flow::face_means(g, flow_.alpha());
-  std::vector<double> share;
+  std::vector<double> share, beta(n, 0.0);
   const std::vector<Vec> u_start =
       exchange_.fluid_velocity({p.x, p.d, p.m, none, none}, flow_.velocity(), mass0, &mask0, share);
-  std::vector<Vec> yield(n, {0.0, 0.0, 0.0});
+  const std::vector<double>& eps_now = flow_.fluid_fraction();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (share[i] == 0.0) continue;
+    const Stencil s = stencil(g, p.x[i], p.d[i], s_.width_factor);
+    const double seen = eps_now.empty() ? 1.0 : interpolate(g, s, eps_now);
+    const double eps = std::min(1.0, seen + own_solid_fraction(g, s, p.d[i]));
+    const double mu = interpolate(g, s, flow_.viscosity());
+    const double slip = std::hypot(p.v[i][0] - u_start[i][0], p.v[i][1] - u_start[i][1], p.v[i][2] - u_start[i][2]);
+    beta[i] = share[i] * drag_coefficients(p.drag[i], p.d[i], s_.width_factor, slip, eps, mu, g.h, s_.closure).beta;
+  }
+  // Per DEM step: the other forces, the velocity-dependent drag implicit against the frozen u_p (backward
+  // Euler, v' = (v + a dt + (beta dt / m) u_p) / (1 + beta dt / m): stable at any beta dt / m, and it lands on
+  // the terminal slip), the yield stick, the drift. The impulses are summed (J_sub) for the fluid.
+  std::vector<Vec> sub(n, {0.0, 0.0, 0.0});
   for (int k = 0; k < steps; ++k)
     for (std::size_t i = 0; i < n; ++i) {
       Vec F{};
       const Vec fx = extra ? extra(i, p) : Vec{};
       for (int c = 0; c < 3; ++c) F[c] = p.m[i] * s_.gravity[c] + pending_[i][c] / (steps * dt) + fx[c];
       Vec& v = p.v[i];
-      for (int c = 0; c < 3; ++c) v[c] += F[c] / p.m[i] * dt;
-      const double bound = share[i] * p.drag[i].rest * dt;  // N s
+      const double a = beta[i] * dt / p.m[i];
+      for (int c = 0; c < 3; ++c) {
+        const double free = v[c] + F[c] / p.m[i] * dt;
+        const double next = (free + a * u_start[i][c]) / (1.0 + a);
+        sub[i][c] += p.m[i] * (next - free);
+        v[c] = next;
+      }
+      // The yield part in the same update (as fluid/drag_kick.h): it removes at most F_y dt / (1 + a) of
+      // momentum from the slip the linear part left, so that the terminal slip is (F - F_y) / beta and a
+      // particle sticks exactly when its other forces are below F_y.
+      const double bound = share[i] * p.drag[i].rest * dt / (1.0 + a);  // N s
       if (bound > 0.0) {
         const Vec w{v[0] - u_start[i][0], v[1] - u_start[i][1], v[2] - u_start[i][2]};
         const double speed = std::hypot(w[0], w[1], w[2]);
@@ -104,7 +127,7 @@ CycleStats CoupledFlow::cycle(CoupledParticles& p, int steps, double dt, const E
           st.stuck_steps += stick ? 1 : 0;
           for (int c = 0; c < 3; ++c) {
             const double J = -scale * w[c];
-            yield[i][c] += J;
+            sub[i][c] += J;
             v[c] += J / p.m[i];
           }
         }
@@ -123,43 +146,39 @@ CycleStats CoupledFlow::cycle(CoupledParticles& p, int steps, double dt, const E
                                                                        : flow_.fluid_fraction();
   const std::vector<double> eps_end = fluid_fraction(p);
   const int parts = std::max(1, static_cast<int>(std::ceil(T / flow_.next_time_step() * (1.0 - 1e-12))));
-  // The drag coefficients at the slip against the fluid at the end positions (u^n).
-  std::vector<double> beta(n, 0.0), share_end;
-  const std::vector<Vec> u_end =
-      exchange_.fluid_velocity({p.x, p.d, p.m, none, none}, flow_.velocity(), mass0, &mask0, share_end);
-  for (std::size_t i = 0; i < n; ++i) {
-    if (share_end[i] == 0.0) continue;
-    const Stencil s = stencil(g, p.x[i], p.d[i], s_.width_factor);
-    const double eps = std::min(1.0, interpolate(g, s, eps_end) + own_solid_fraction(g, s, p.d[i]));
-    const double mu = interpolate(g, s, flow_.viscosity());
-    const double slip = std::hypot(p.v[i][0] - u_end[i][0], p.v[i][1] - u_end[i][1], p.v[i][2] - u_end[i][2]);
-    beta[i] = share_end[i] * drag_coefficients(p.drag[i], p.d[i], s_.width_factor, slip, eps, mu, g.h, s_.closure).beta;
-  }
   const ExchangeParticles view{p.x, p.d, p.m, beta, none};
-  std::vector<Vec> impulse;
+  std::vector<Vec> impulse, reference = u_start;
   flow::Faces at_start, at_end;  // N s/m3: the pressure impulses, split by the positions their fluid mass had
   for (int c = 0; c < 3; ++c) at_start[c].assign(g.face_count(c), 0.0), at_end[c].assign(g.face_count(c), 0.0);
-  const std::vector<Vec> no_yield(n, {0.0, 0.0, 0.0});
   for (int j = 0; j < parts; ++j) {
     const double s0 = static_cast<double>(j) / parts, s1 = static_cast<double>(j + 1) / parts;
     std::vector<double> eps(eps_end);
     if (j + 1 < parts)
       for (std::size_t c = 0; c < eps.size(); ++c) eps[c] = eps_start[c] + s1 * (eps_end[c] - eps_start[c]);
     flow_.set_next_fluid_fraction(std::move(eps));
-    flow_.set_exchange([&](double h, flow::Faces& u, const flow::Faces& mass) {
-      const flow::Faces mask = flow::face_means(g, flow_.alpha());
-      const flow::Faces before = u;
-      const ExchangeStats e = exchange_.apply_after_subcycle(h, view, p.v, u, mass, &mask, j == 0 ? yield : no_yield, impulse);
-      st.exchange_iterations += e.iterations;
-      st.dropped_yield += e.dropped_yield;
+    // The books of the exchange: the faces' momentum change inside the hooks against the particles' impulses.
+    auto book = [&](const flow::Faces& before, const flow::Faces& u, const flow::Faces& mass, const std::vector<Vec>& J) {
       for (int c = 0; c < 3; ++c) {
         for (std::size_t f = 0; f < u[c].size(); ++f) st.fluid_exchange[c] += mass[c][f] * (u[c][f] - before[c][f]);
-        for (std::size_t i = 0; i < n; ++i) {
-          st.particle_exchange[c] += impulse[i][c] + (j == 0 ? yield[i][c] : 0.0);
-          st.exchange_scale += std::abs(impulse[i][c]) + (j == 0 ? std::abs(yield[i][c]) : 0.0);
-        }
+        for (std::size_t i = 0; i < n; ++i) st.particle_exchange[c] += J[i][c], st.exchange_scale += std::abs(J[i][c]);
       }
-    });
+    };
+    auto react = [&](double, flow::Faces& u, const flow::Faces& mass) {
+      if (j != 0) return;  // the sub-cycle's reaction once, in the first sub-step
+      const flow::Faces mask = flow::face_means(g, flow_.alpha()), before = u;
+      st.dropped_yield += exchange_.react(view, u, mass, &mask, sub).dropped_yield;
+      book(before, u, mass, sub);
+    };
+    auto correct = [&](double h, flow::Faces& u, const flow::Faces& mass) {
+      const flow::Faces mask = flow::face_means(g, flow_.alpha()), before = u;
+      const ExchangeStats e = exchange_.correct(h, view, p.v, u, mass, &mask, reference, impulse);
+      st.exchange_iterations += e.iterations;
+      book(before, u, mass, impulse);
+      // The next sub-step's change is measured from where this one left the fluid at the particles.
+      std::vector<double> unused;
+      if (j + 1 < parts) reference = exchange_.fluid_velocity(view, u, mass, &mask, unused);
+    };
+    flow_.set_exchange(react, correct);
     try {
       flow_.step(T / parts);
     } catch (...) {

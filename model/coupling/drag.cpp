@@ -60,7 +60,12 @@ DragCoefficients drag_coefficients(const SphereDrag& law, double diameter, doubl
   if (closure.disturbance && beta > 0.0) {
     if (!(viscosity > 0.0) || !std::isfinite(viscosity))
       throw std::invalid_argument(fmt::format("coupling drag: local viscosity {} Pa s is not positive and finite", viscosity));
-    beta /= 1.0 + beta * self_mobility(diameter, width_factor, cell, viscosity);
+    // The particle's own reaction drags the fluid at it along: u_f = u_undisturbed - g0 F_p, so
+    // F_p = beta (u_f + g0 F_p - v) and beta_c = beta / (1 - beta g0). beta g0 = r / a_eff for Stokes drag
+    // (a_eff = sigma sqrt(pi), Maxey & Patel's radius of the smoothed force): singular when the smoothing is no
+    // wider than the sphere (the grid would then resolve it). Held at 0.9 (a factor 10), for kernels near
+    // the minimum width on cells much smaller than the sphere.
+    beta /= 1.0 - std::min(0.9, beta * self_mobility(diameter, width_factor, cell, viscosity));
   }
   return {beta, law.rest};
 }

@@ -16,8 +16,9 @@
 //    the particle: the kernel mean of eps_f plus the particle's own part (own_solid_fraction), so that a lone
 //    sphere sees eps = 1 exactly and gets the isolated drag.
 // 2. Disturbance (the particle's own contribution to u_f(x_p)): the reaction spread by the kernel drags the
-//    fluid at the particle along with it, u_f = u_undisturbed + g0 F, so beta applied to u_f under-drags.
-//    Solving F = beta (u_undisturbed - v) for the measured u_f gives beta_c = beta / (1 + beta g0)
+//    fluid at the particle along with it, u_f = u_undisturbed - g0 F (F the force on the particle), so beta
+//    applied to u_f under-drags. Solving F = beta (u_undisturbed - v) for the measured u_f gives
+//    beta_c = beta / (1 - beta g0), beta g0 held at 0.9 at most (see drag.cpp)
 //    (Horwitz & Mani 2016, J. Comput. Phys. 318, 85-109; Balachandar, Liu & Lakhote 2019, J. Comput. Phys.
 //    376, 160-185). g0 (m/(N s)) is the self-mobility of the smoothed force: the kernel-weighted mean of the
 //    Stokeslet over the source and the read-back, 1 / (6 pi mu) E[1 / |X - Y|]. For a Gaussian of standard

@@ -116,31 +116,36 @@ ExchangeStats Exchange::apply(double dt, const ExchangeParticles& p, std::vector
   return st;
 }
 
-ExchangeStats Exchange::apply_after_subcycle(double dt, const ExchangeParticles& p, std::vector<std::array<double, 3>>& v,
-                                             flow::Faces& u, const flow::Faces& face_mass, const flow::Faces* paste_mask,
-                                             const std::vector<std::array<double, 3>>& yield_impulse,
-                                             std::vector<std::array<double, 3>>& impulse) const {
-  check(p, v);
-  if (yield_impulse.size() != p.centre.size())
-    throw std::invalid_argument("coupling exchange: yield impulses and particles differ in length");
+ExchangeStats Exchange::react(const ExchangeParticles& p, flow::Faces& u, const flow::Faces& face_mass,
+                              const flow::Faces* paste_mask, const std::vector<std::array<double, 3>>& subcycle_impulse) const {
+  if (subcycle_impulse.size() != p.centre.size())
+    throw std::invalid_argument("coupling exchange: sub-cycle impulses and particles differ in length");
   const Rows W = rows(p, face_mass, paste_mask);
-  // The reaction of the whole sub-cycle at once: the faces stayed frozen while the particles stuck to them. A
-  // particle whose support holds no reacting face now passes its reaction to none: the sub-cycle gave it no
-  // yield part then (fluid_velocity's in_paste), unless the paste left its faces during the step (the last
-  // fluid step's alpha); then its share is dropped and reported (ExchangeStats::dropped_yield).
   ExchangeStats st;
   for (int c = 0; c < 3; ++c) {
     std::vector<double> reaction(u[c].size(), 0.0);
     for (std::size_t i = 0; i < p.centre.size(); ++i) {
-      if (yield_impulse[i][c] == 0.0) continue;
-      if (W[c][i].face.empty()) st.dropped_yield += std::abs(yield_impulse[i][c]);
-      else W[c][i].spread(-yield_impulse[i][c], reaction);
+      if (subcycle_impulse[i][c] == 0.0) continue;
+      if (W[c][i].face.empty()) st.dropped_yield += std::abs(subcycle_impulse[i][c]);
+      else W[c][i].spread(-subcycle_impulse[i][c], reaction);
     }
     for (std::size_t f = 0; f < u[c].size(); ++f)
       if (reaction[f] != 0.0) u[c][f] += reaction[f] / face_mass[c][f];
   }
+  return st;
+}
+
+ExchangeStats Exchange::correct(double dt, const ExchangeParticles& p, std::vector<std::array<double, 3>>& v,
+                                flow::Faces& u, const flow::Faces& face_mass, const flow::Faces* paste_mask,
+                                const std::vector<std::array<double, 3>>& reference,
+                                std::vector<std::array<double, 3>>& impulse) const {
+  check(p, v);
+  if (reference.size() != p.centre.size())
+    throw std::invalid_argument("coupling exchange: reference velocities and particles differ in length");
+  const Rows W = rows(p, face_mass, paste_mask);
+  ExchangeStats st;
   impulse.assign(p.centre.size(), {0.0, 0.0, 0.0});
-  for (int c = 0; c < 3; ++c) drag_part(c, dt, p, W, v, u[c], face_mass[c], impulse, st);
+  for (int c = 0; c < 3; ++c) drag_part(c, dt, p, W, v, u[c], face_mass[c], impulse, st, &reference);
   return st;
 }
 
@@ -218,7 +223,8 @@ int conjugate_gradients(Apply&& apply_A, const std::vector<double>& b, const std
 
 void Exchange::drag_part(int c, double dt, const ExchangeParticles& p, const Rows& W,
                          std::vector<std::array<double, 3>>& v, std::vector<double>& u, const std::vector<double>& M,
-                         std::vector<std::array<double, 3>>& impulse, ExchangeStats& st) const {
+                         std::vector<std::array<double, 3>>& impulse, ExchangeStats& st,
+                         const std::vector<std::array<double, 3>>* reference) const {
   const std::size_t n = p.centre.size(), F = u.size();
   std::vector<double> B(n);  // kg/s: beta with the particle eliminated, beta m / (m + dt beta)
   for (std::size_t i = 0; i < n; ++i) B[i] = p.beta[i] * p.mass[i] / (p.mass[i] + dt * p.beta[i]);
@@ -232,7 +238,7 @@ void Exchange::drag_part(int c, double dt, const ExchangeParticles& p, const Row
   for (std::size_t f = 0; f < F; ++f) rhs[f] = mass_of(f) * u[f], diag[f] = mass_of(f);
   for (std::size_t i = 0; i < n; ++i) {
     if (B[i] == 0.0) continue;
-    W[c][i].spread(dt * B[i] * v[i][c], rhs);
+    W[c][i].spread(dt * B[i] * (reference ? (*reference)[i][c] : v[i][c]), rhs);
     for (std::size_t e = 0; e < W[c][i].face.size(); ++e) diag[W[c][i].face[e]] += dt * B[i] * W[c][i].w[e] * W[c][i].w[e];
   }
   double rel = 0.0;
@@ -246,7 +252,7 @@ void Exchange::drag_part(int c, double dt, const ExchangeParticles& p, const Row
   std::vector<double> reaction(F, 0.0);
   for (std::size_t i = 0; i < n; ++i) {
     if (B[i] == 0.0 || W[c][i].face.empty()) continue;
-    const double J = dt * B[i] * (W[c][i].at(x) - v[i][c]);
+    const double J = dt * B[i] * (W[c][i].at(x) - (reference ? (*reference)[i][c] : v[i][c]));
     impulse[i][c] += J;
     v[i][c] += J / p.mass[i];
     W[c][i].spread(-J, reaction);

@@ -45,7 +45,7 @@ struct ExchangeStats {
   int iterations = 0;              // CG, summed over the components
   double relative_residual = 0.0;  // worst component's, at exit
   int stuck = 0;                   // particles that stuck in the yield part
-  double dropped_yield = 0.0;      // N s, |J_y| of sub-cycle yield reactions no reacting face could take
+  double dropped_yield = 0.0;      // N s, |J_sub| of sub-cycle reactions no reacting face could take
 };
 
 class Exchange {
@@ -58,14 +58,24 @@ class Exchange {
   ExchangeStats apply(double dt, const ExchangeParticles& p, std::vector<std::array<double, 3>>& v, flow::Faces& u,
                       const flow::Faces& face_mass, const flow::Faces* paste_mask,
                       std::vector<std::array<double, 3>>& impulse) const;
-  // The same after a DEM sub-cycle that ran the yield part itself (coupled_box.h: each DEM step sticks against
-  // the frozen fluid velocity `fluid_velocity` gave, and sums the impulses): the faces take the sub-cycle's
-  // summed yield reaction -W^T J_y (N s per particle in `yield_impulse`), then the velocity-dependent part runs
-  // as in apply. impulse (out) holds only that drag part. p.yield_force is not used.
-  ExchangeStats apply_after_subcycle(double dt, const ExchangeParticles& p, std::vector<std::array<double, 3>>& v,
-                                     flow::Faces& u, const flow::Faces& face_mass, const flow::Faces* paste_mask,
-                                     const std::vector<std::array<double, 3>>& yield_impulse,
-                                     std::vector<std::array<double, 3>>& impulse) const;
+  // After a DEM sub-cycle that ran the drag against the frozen fluid itself (coupled_flow.h: each DEM step
+  // applies the velocity-dependent part implicitly per particle and the yield stick against the fluid velocity
+  // u_ref that `fluid_velocity` gave, and sums the impulses J_sub), the flow step does two things:
+  //  react:   the faces take the sub-cycle's reaction -W^T J_sub (N s per particle), before the viscous solve
+  //           (which spreads it in the same step);
+  //  correct: after the projection, the fluid's own change since u_ref, with the velocity-dependent part
+  //           implicit in both phases: J = dt B (W u' - u_ref), (M + dt W^T B W) u' = M u + dt W^T B u_ref
+  //           (0 when the fluid at the particles did not change: the sub-cycle's drag is not applied twice,
+  //           and a steady state does not depend on dt). impulse (out): J. p.yield_force is not used.
+  // A particle whose support holds no reacting face passes its reaction to none: the sub-cycle gave it no drag
+  // then (fluid_velocity's share 0), unless the paste left its faces during the step; that share is dropped
+  // and reported (ExchangeStats::dropped_yield).
+  ExchangeStats react(const ExchangeParticles& p, flow::Faces& u, const flow::Faces& face_mass,
+                      const flow::Faces* paste_mask, const std::vector<std::array<double, 3>>& subcycle_impulse) const;
+  ExchangeStats correct(double dt, const ExchangeParticles& p, std::vector<std::array<double, 3>>& v, flow::Faces& u,
+                        const flow::Faces& face_mass, const flow::Faces* paste_mask,
+                        const std::vector<std::array<double, 3>>& reference,
+                        std::vector<std::array<double, 3>>& impulse) const;
   // The fluid velocity each particle's drag sees, W u (m/s), with the weights above, and its paste share: the
   // masked weights' sum over the unmasked one (mean over the components), 0 where the particle's support holds
   // no face that takes a reaction (no paste drag: u_p = 0 returned). The caller scales the drag by the share
@@ -93,9 +103,11 @@ class Exchange {
   static void yield_part(double dt, const ExchangeParticles& p, const Rows& W, std::vector<std::array<double, 3>>& v,
                          flow::Faces& u, const flow::Faces& face_mass, std::vector<std::array<double, 3>>& impulse,
                          ExchangeStats& st);
+  // reference: nullptr (the particles' own velocities v*), or per particle the fluid velocity the sub-cycle's
+  // drag relaxed it to: then only the fluid's change from it is exchanged (apply_after_subcycle).
   void drag_part(int c, double dt, const ExchangeParticles& p, const Rows& W, std::vector<std::array<double, 3>>& v,
                  std::vector<double>& u, const std::vector<double>& M, std::vector<std::array<double, 3>>& impulse,
-                 ExchangeStats& st) const;
+                 ExchangeStats& st, const std::vector<std::array<double, 3>>* reference = nullptr) const;
   flow::Grid g_;
   double c_;
 };
