@@ -73,88 +73,93 @@ std::array<double, 3> CoupledFlow::fluid_momentum() const {
   return out;
 }
 
-CycleStats CoupledFlow::cycle(CoupledParticles& p, int steps, double dt, const ExtraForce& extra) {
-  const std::size_t n = p.size();
-  if (p.v.size() != n || p.d.size() != n || p.m.size() != n || p.drag.size() != n || x_flow_.size() != n)
-    throw std::invalid_argument("coupling: particle arrays differ in length (or start() was not called)");
-  if (steps < 1 || !(dt > 0.0)) throw std::invalid_argument("coupling: a cycle needs steps >= 1 and dt > 0");
+CoupledFlow::Start CoupledFlow::drag_at_start(const CoupledParticles& p) const {
   const flow::Grid& g = flow_.grid();
-  CycleStats st;
+  const std::size_t n = p.size();
   const std::vector<double> none(n, 0.0);
-  // 1. The DEM sub-cycle against the fluid as it is now (weights at the cycle's start): the drag coefficients
-  // at the slip v - W u^n and the particles' fluid fraction (drag.h), frozen over the sub-cycle.
+  // The fluid as it is now (weights at the cycle's start): u_p, the paste share, and the drag coefficients at
+  // the slip v - W u^n and the fluid fraction the others leave (drag.h), frozen over the sub-cycle.
   const flow::Faces mass0 = flow_.fluid_mass(), mask0 = flow::face_means(g, flow_.alpha());
-  std::vector<double> share, beta(n, 0.0);
-  const std::vector<Vec> u_start =
-      exchange_.fluid_velocity({p.x, p.d, p.m, none, none}, flow_.velocity(), mass0, &mask0, share);
+  Start s0;
+  s0.beta.assign(n, 0.0);
+  s0.u = exchange_.fluid_velocity({p.x, p.d, p.m, none, none}, flow_.velocity(), mass0, &mask0, s0.share);
   const std::vector<double>& eps_now = flow_.fluid_fraction();
   for (std::size_t i = 0; i < n; ++i) {
-    if (share[i] == 0.0) continue;
+    if (s0.share[i] == 0.0) continue;
     const Stencil s = stencil(g, p.x[i], p.d[i], s_.width_factor);
     const double seen = eps_now.empty() ? 1.0 : interpolate(g, s, eps_now);
     const double eps = std::min(1.0, seen + own_solid_fraction(g, s, p.d[i]));
     const double mu = interpolate(g, s, flow_.viscosity());
-    const double slip = std::hypot(p.v[i][0] - u_start[i][0], p.v[i][1] - u_start[i][1], p.v[i][2] - u_start[i][2]);
-    beta[i] = share[i] * drag_coefficients(p.drag[i], p.d[i], s_.width_factor, slip, eps, mu, g.h, s_.closure).beta;
+    const Vec& u = s0.u[i];
+    const double slip = std::hypot(p.v[i][0] - u[0], p.v[i][1] - u[1], p.v[i][2] - u[2]);
+    s0.beta[i] = s0.share[i] * drag_coefficients(p.drag[i], p.d[i], s_.width_factor, slip, eps, mu, g.h, s_.closure).beta;
   }
-  // Per DEM step: the other forces, the velocity-dependent drag implicit against the frozen u_p (backward
-  // Euler, v' = (v + a dt + (beta dt / m) u_p) / (1 + beta dt / m): stable at any beta dt / m, and it lands on
-  // the terminal slip), the yield stick, the drift. The impulses are summed (J_sub) for the fluid.
-  std::vector<Vec> sub(n, {0.0, 0.0, 0.0});
-  for (int k = 0; k < steps; ++k)
-    for (std::size_t i = 0; i < n; ++i) {
-      Vec F{};
-      const Vec fx = extra ? extra(i, p) : Vec{};
-      for (int c = 0; c < 3; ++c) F[c] = p.m[i] * s_.gravity[c] + pending_[i][c] / (steps * dt) + fx[c];
-      Vec& v = p.v[i];
-      const double a = beta[i] * dt / p.m[i];
-      for (int c = 0; c < 3; ++c) {
-        const double free = v[c] + F[c] / p.m[i] * dt;
-        const double next = (free + a * u_start[i][c]) / (1.0 + a);
-        sub[i][c] += p.m[i] * (next - free);
-        v[c] = next;
-      }
-      // The yield part in the same update (as fluid/drag_kick.h): it removes at most F_y dt / (1 + a) of
-      // momentum from the slip the linear part left, so that the terminal slip is (F - F_y) / beta and a
-      // particle sticks exactly when its other forces are below F_y.
-      const double bound = share[i] * p.drag[i].rest * dt / (1.0 + a);  // N s
-      if (bound > 0.0) {
-        const Vec w{v[0] - u_start[i][0], v[1] - u_start[i][1], v[2] - u_start[i][2]};
-        const double speed = std::hypot(w[0], w[1], w[2]);
-        if (speed > 0.0) {
-          const bool stick = p.m[i] * speed <= bound;
-          const double scale = stick ? p.m[i] : bound / speed;
-          st.stuck_steps += stick ? 1 : 0;
-          for (int c = 0; c < 3; ++c) {
-            const double J = -scale * w[c];
-            sub[i][c] += J;
-            v[c] += J / p.m[i];
-          }
-        }
-      }
-      for (int c = 0; c < 3; ++c) {
-        double& x = p.x[i][c];
-        x += v[c] * dt;
-        const double L = g.n[c] * g.h[c];
-        if (g.periodic(c) && (x < g.origin[c] || x >= g.origin[c] + L))  // only then: a wrap rounds
-          x = g.origin[c] + std::fmod(std::fmod(x - g.origin[c], L) + L, L);
-      }
+  return s0;
+}
+
+// One DEM step of particle i: the other forces, the velocity-dependent drag implicit against the frozen u_p
+// (backward Euler, v' = (v + a dt + (beta dt / m) u_p) / (1 + beta dt / m): stable at any beta dt / m, and it
+// lands on the terminal slip), the yield stick, the drift. The drag impulses are summed into sub (J_sub).
+void CoupledFlow::dem_step(CoupledParticles& p, std::size_t i, double dt, int steps, const ExtraForce& extra,
+                           const Start& s0, std::vector<Vec>& sub, CycleStats& st) const {
+  const flow::Grid& g = flow_.grid();
+  const Vec& u = s0.u[i];
+  Vec F{};
+  const Vec fx = extra ? extra(i, p) : Vec{};
+  for (int c = 0; c < 3; ++c) F[c] = p.m[i] * s_.gravity[c] + pending_[i][c] / (steps * dt) + fx[c];
+  Vec& v = p.v[i];
+  const double a = s0.beta[i] * dt / p.m[i];
+  for (int c = 0; c < 3; ++c) {
+    const double free = v[c] + F[c] / p.m[i] * dt;
+    const double next = (free + a * u[c]) / (1.0 + a);
+    sub[i][c] += p.m[i] * (next - free);
+    v[c] = next;
+  }
+  // The yield part in the same update (as fluid/drag_kick.h): it removes at most F_y dt / (1 + a) of momentum
+  // from the slip the linear part left, so that the terminal slip is (F - F_y) / beta and a particle sticks
+  // exactly when its other forces are below F_y.
+  const double bound = s0.share[i] * p.drag[i].rest * dt / (1.0 + a);  // N s
+  const Vec w{v[0] - u[0], v[1] - u[1], v[2] - u[2]};
+  const double speed = std::hypot(w[0], w[1], w[2]);
+  if (bound > 0.0 && speed > 0.0) {
+    const bool stick = p.m[i] * speed <= bound;
+    const double scale = stick ? p.m[i] : bound / speed;
+    st.stuck_steps += stick ? 1 : 0;
+    for (int c = 0; c < 3; ++c) {
+      const double J = -scale * w[c];
+      sub[i][c] += J;
+      v[c] += J / p.m[i];
     }
-  // 2. The flow over the interval, eps_f linear in time between the start and the end positions.
-  const double T = steps * dt;
+  }
+  for (int c = 0; c < 3; ++c) {
+    double& x = p.x[i][c];
+    x += v[c] * dt;
+    const double L = g.n[c] * g.h[c];
+    if (g.periodic(c) && (x < g.origin[c] || x >= g.origin[c] + L))  // only then: a wrap rounds
+      x = g.origin[c] + std::fmod(std::fmod(x - g.origin[c], L) + L, L);
+  }
+}
+
+// The flow over the interval T, eps_f linear in time between the start and the end positions; the exchange's
+// hooks in each sub-step; then the particles' pending pressure impulses.
+void CoupledFlow::flow_interval(CoupledParticles& p, double T, const Start& s0, const std::vector<Vec>& sub,
+                                CycleStats& st) {
+  const flow::Grid& g = flow_.grid();
+  const std::size_t n = p.size();
+  const std::vector<double> none(n, 0.0);
   const std::vector<double> eps_start = flow_.fluid_fraction().empty() ? std::vector<double>(g.cell_count(), 1.0)
                                                                        : flow_.fluid_fraction();
   const std::vector<double> eps_end = fluid_fraction(p);
   const int parts = std::max(1, static_cast<int>(std::ceil(T / flow_.next_time_step() * (1.0 - 1e-12))));
-  const ExchangeParticles view{p.x, p.d, p.m, beta, none};
-  std::vector<Vec> impulse, reference = u_start;
+  const ExchangeParticles view{p.x, p.d, p.m, s0.beta, none};
+  std::vector<Vec> impulse, reference = s0.u;
   flow::Faces at_start, at_end;  // N s/m3: the pressure impulses, split by the positions their fluid mass had
   for (int c = 0; c < 3; ++c) at_start[c].assign(g.face_count(c), 0.0), at_end[c].assign(g.face_count(c), 0.0);
   for (int j = 0; j < parts; ++j) {
-    const double s0 = static_cast<double>(j) / parts, s1 = static_cast<double>(j + 1) / parts;
+    const double r0 = static_cast<double>(j) / parts, r1 = static_cast<double>(j + 1) / parts;
     std::vector<double> eps(eps_end);
     if (j + 1 < parts)
-      for (std::size_t c = 0; c < eps.size(); ++c) eps[c] = eps_start[c] + s1 * (eps_end[c] - eps_start[c]);
+      for (std::size_t c = 0; c < eps.size(); ++c) eps[c] = eps_start[c] + r1 * (eps_end[c] - eps_start[c]);
     flow_.set_next_fluid_fraction(std::move(eps));
     // The books of the exchange: the faces' momentum change inside the hooks against the particles' impulses.
     auto book = [&](const flow::Faces& before, const flow::Faces& u, const flow::Faces& mass, const std::vector<Vec>& J) {
@@ -192,11 +197,11 @@ CycleStats CoupledFlow::cycle(CoupledParticles& p, int steps, double dt, const E
     for (int c = 0; c < 3; ++c)
       for (std::size_t f = 0; f < at_start[c].size(); ++f) {
         const double a = ic[c].empty() ? 0.0 : ic[c][f], b = ip[c][f];
-        at_start[c][f] += (1.0 - s0) * a + (1.0 - s1) * b;
-        at_end[c][f] += s0 * a + s1 * b;
+        at_start[c][f] += (1.0 - r0) * a + (1.0 - r1) * b;
+        at_end[c][f] += r0 * a + r1 * b;
       }
   }
-  // 3. The pressure-gradient force of model A, pending for the next sub-cycle.
+  // Model A's pressure-gradient force, pending for the next sub-cycle.
   for (std::size_t i = 0; i < n; ++i) {
     const Vec a = face_mean(stencil(g, x_flow_[i], p.d[i], s_.width_factor), at_start);
     const Vec b = face_mean(stencil(g, p.x[i], p.d[i], s_.width_factor), at_end);
@@ -204,6 +209,19 @@ CycleStats CoupledFlow::cycle(CoupledParticles& p, int steps, double dt, const E
     for (int c = 0; c < 3; ++c) pending_[i][c] = -V * (a[c] + b[c]);
   }
   x_flow_ = p.x;
+}
+
+CycleStats CoupledFlow::cycle(CoupledParticles& p, int steps, double dt, const ExtraForce& extra) {
+  const std::size_t n = p.size();
+  if (p.v.size() != n || p.d.size() != n || p.m.size() != n || p.drag.size() != n || x_flow_.size() != n)
+    throw std::invalid_argument("coupling: particle arrays differ in length (or start() was not called)");
+  if (steps < 1 || !(dt > 0.0)) throw std::invalid_argument("coupling: a cycle needs steps >= 1 and dt > 0");
+  CycleStats st;
+  const Start s0 = drag_at_start(p);
+  std::vector<Vec> sub(n, {0.0, 0.0, 0.0});
+  for (int k = 0; k < steps; ++k)
+    for (std::size_t i = 0; i < n; ++i) dem_step(p, i, dt, steps, extra, s0, sub, st);
+  flow_interval(p, steps * dt, s0, sub, st);
   return st;
 }
 

@@ -4,24 +4,28 @@
 // plain arrays; contacts, if any, come in as an extra force).
 //
 // One cycle of `steps` DEM steps of dt (the coupling interval T = steps dt):
-//   1. DEM sub-cycle, each step (symplectic Euler): v += (m g + f_extra + P / steps... ) dt / m where P is the
-//      particle's pending pressure impulse (below), spread evenly over the sub-cycle; then the drag's bounded
-//      yield part sticks the particle to the fluid velocity u_p frozen at the cycle's start (W u^n, the
-//      exchange's masked weights): J = -m w if m |w| <= F_y dt, else -F_y dt w / |w| (w = v - u_p), summed
-//      over the sub-cycle as J_y; then x += v dt.
-//   2. Flow, over T in k equal sub-steps (k from the flow's CFL bound at the start): eps_f from the particles'
-//      new positions (kernel.h; linear in time between the cycle's start and end within the sub-steps), and in
-//      each sub-step, after its viscous solve and before its projection (FlowSolver::set_exchange), the
-//      exchange (exchange.h): the faces take -W^T J_y (the whole sub-cycle's yield reaction, first sub-step),
-//      then the velocity-dependent drag, beta from drag.h at the slip v - W u^n, implicit in both phases.
-//   3. Model A's pressure-gradient force on the particles, -V_p grad p (buoyancy counted once, no separate
+//   1. Drag coefficients at the cycle's start (drag.h: the particle's law on the slip v - W u^n, the voidage the
+//      others leave, the disturbance correction), u_p = W u^n frozen (the exchange's masked weights, scaled by
+//      the particle's paste share).
+//   2. DEM sub-cycle, each step: v += (m g + P / T + f_extra) dt / m (P: the pending pressure impulse, below);
+//      the velocity-dependent drag implicit against u_p (backward Euler, stable at any beta dt / m); the yield
+//      part in the same update (it removes at most F_y dt / (1 + beta dt / m) of momentum, never reversing the
+//      slip: the terminal slip is (F - F_y) / beta, and a particle sticks exactly when F <= F_y); x += v dt.
+//      The drag impulses are summed, J_sub.
+//   3. Flow over T, in k equal sub-steps (k from the flow's CFL bound at the start), eps_f from the particles'
+//      new positions (kernel.h; linear in time between the cycle's start and end within the sub-steps). In the
+//      first sub-step the faces take -W^T J_sub before the viscous solve (FlowSolver::set_exchange `before`:
+//      the implicit viscous step spreads it within the step, so a steady state does not depend on dt); after
+//      each sub-step's projection (`after`), the fluid's own change at the particles is exchanged with the
+//      velocity-dependent drag implicit in both phases (exchange.h, correct).
+//   4. Model A's pressure-gradient force on the particles, -V_p grad p (buoyancy counted once, no separate
 //      rho_f V g): each sub-step's pressure impulses (FlowSolver::continuity_impulse / pressure_impulse, dt grad p
 //      per face) acted on the fluid's mass eps_f at known times; the particles get the complement,
 //      -V_p (kernel mean of the impulses) with the kernel at the matching positions (the start and end
 //      positions, mixed as eps_f was), so that in a periodic box the pressure exerts no net force on the
-//      mixture. That impulse is pending: it is given over the next sub-cycle (step 1).
+//      mixture. That impulse is pending: it is given over the next sub-cycle (step 2).
 // Momentum: gravity is the only external force in a periodic box; particles + fluid + pending impulses gain
-// exactly M g t (momentum_test.cpp).
+// exactly M g t (momentum_test.cpp). Serial over the particles, in their order: independent of the threads.
 #pragma once
 
 #include <array>
@@ -77,6 +81,15 @@ class CoupledFlow {
   const flow::FlowSolver& flow() const { return flow_; }
 
  private:
+  using Vec = std::array<double, 3>;
+  struct Start {  // per particle, at the cycle's start: u_p (m/s), paste share, beta (kg/s)
+    std::vector<Vec> u;
+    std::vector<double> share, beta;
+  };
+  Start drag_at_start(const CoupledParticles& p) const;
+  void dem_step(CoupledParticles& p, std::size_t i, double dt, int steps, const ExtraForce& extra, const Start& s0,
+                std::vector<Vec>& sub, CycleStats& st) const;
+  void flow_interval(CoupledParticles& p, double T, const Start& s0, const std::vector<Vec>& sub, CycleStats& st);
   std::vector<double> fluid_fraction(const CoupledParticles& p) const;  // eps_f = 1 - eps_s per cell
   // Kernel mean of face impulses at a position, over the faces that are not box walls (renormalised there).
   std::array<double, 3> face_mean(const Stencil& s, const flow::Faces& f) const;
