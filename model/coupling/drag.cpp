@@ -2,6 +2,7 @@
 #include "model/coupling/drag.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -22,11 +23,78 @@ double di_felice_chi(double re) {
   return 3.7 - 0.65 * std::exp(-0.5 * x * x);
 }
 
+namespace {
+
+// Gauss-Legendre nodes and weights on [-1, 1], 16 points.
+constexpr std::array<double, 8> kGlX{0.0950125098376374, 0.2816035507792589, 0.4580167776572274, 0.6178762444026438,
+                                     0.7554044083550030, 0.8656312023878318, 0.9445750230732326, 0.9894009349916499};
+constexpr std::array<double, 8> kGlW{0.1894506104550685, 0.1826034150449236, 0.1691565193950025, 0.1495959888165767,
+                                     0.1246289712555339, 0.0951585116824928, 0.0622535239386479, 0.0271524594117541};
+template <class F>
+double gauss(double lo, double hi, F&& f) {  // 16-point Gauss-Legendre of f over [lo, hi]
+  const double m = 0.5 * (lo + hi), r = 0.5 * (hi - lo);
+  double sum = 0.0;
+  for (std::size_t k = 0; k < kGlX.size(); ++k) sum += kGlW[k] * (f(m - r * kGlX[k]) + f(m + r * kGlX[k]));
+  return sum * r;
+}
+
+// Density of E1 - E2 at u in [0, 2], E_i the unit Epanechnikov kernel: a polynomial of degree 5, exact.
+double epanechnikov_difference(double u) {
+  return gauss(u - 1.0, 1.0, [u](double x) { return 0.5625 * (1.0 - x * x) * (1.0 - (x - u) * (x - u)); });
+}
+
+// E exp(-t^2 (u + B)^2) over B = B1 - B2 (the triangle of half-width q): closed form with erf.
+double triangle_mean(double u, double t, double q) {
+  if (q == 0.0) return std::exp(-t * t * u * u);
+  if (t == 0.0) return 1.0;
+  const double sp = std::sqrt(std::numbers::pi) / 2.0;
+  // int_0^q (q - b) exp(-t^2 (u + b)^2) db and its mirror, y = t (u + b).
+  auto half = [&](double uu) {
+    const double y1 = t * uu, y2 = t * (uu + q);
+    return ((q + uu) * sp * (std::erf(y2) - std::erf(y1)) - 0.5 / t * (std::exp(-y1 * y1) - std::exp(-y2 * y2))) / t;
+  };
+  return (half(u) + half(-u)) / (q * q);
+}
+
+// phi(t) = E exp(-t^2 Z^2) per axis, Z = E1 - E2 + B1 - B2 (unit kernel, cell q); symmetric in Z.
+double axis_mean(double t, double q) {
+  const double w = std::min(2.0, 6.0 / std::max(t, 1e-300) + q);  // where the integrand lives
+  auto f = [&](double u) { return epanechnikov_difference(u) * triangle_mean(u, t, q); };
+  return 2.0 * (w < 2.0 ? gauss(0.0, w, f) + gauss(w, 2.0, f) : gauss(0.0, 2.0, f));
+}
+
+}  // namespace
+
+double kernel_inverse_distance(double q) {
+  // E[1/r] = (2 / sqrt(pi)) int_0^inf phi(t)^3 dt; panels in t over the distribution's scale L = max(1, q), the
+  // tail beyond T from phi ~ sqrt(pi) f_Z(0) / t.
+  const std::array<double, 9> edge{0.0, 0.5, 1.5, 3.0, 6.0, 12.0, 25.0, 50.0, 100.0};
+  const double L = std::max(1.0, q);
+  double sum = 0.0;
+  for (std::size_t k = 0; k + 1 < edge.size(); ++k)
+    sum += gauss(edge[k] / L, edge[k + 1] / L, [q](double t) { return std::pow(axis_mean(t, q), 3); });
+  const double T = edge.back() / L;
+  const double tail = std::pow(axis_mean(T, q) * T, 3) / (2.0 * T * T);  // int_T^inf (phi(T) T / t)^3 dt
+  return 2.0 / std::sqrt(std::numbers::pi) * (sum + tail);
+}
+
 double self_mobility(double diameter, double width_factor, const std::array<double, 3>& cell, double viscosity) {
+  // Scale-free in q = h / a: a table over log q, filled once (the values depend on nothing else).
+  constexpr int kPoints = 97;
+  constexpr double kLo = -3.0, kHi = 3.0;  // log10 q
+  static const std::array<double, kPoints> table = [] {
+    std::array<double, kPoints> t{};
+    for (int i = 0; i < kPoints; ++i) t[i] = kernel_inverse_distance(std::pow(10.0, kLo + (kHi - kLo) * i / (kPoints - 1)));
+    return t;
+  }();
   const double a = 0.5 * width_factor * diameter;  // m, the kernel's half-width
-  const double h2 = (cell[0] * cell[0] + cell[1] * cell[1] + cell[2] * cell[2]) / 3.0;
-  const double sigma = std::sqrt(a * a / 5.0 + h2 / 12.0);  // m
-  return 1.0 / (6.0 * std::pow(std::numbers::pi, 1.5) * viscosity * sigma);
+  const double h = std::cbrt(cell[0] * cell[1] * cell[2]);
+  const double lq = std::log10(h / a);
+  const double x = std::clamp((lq - kLo) / (kHi - kLo) * (kPoints - 1), 0.0, kPoints - 1.0);
+  const int i = std::min(static_cast<int>(x), kPoints - 2);
+  double e = table[i] + (x - i) * (table[i + 1] - table[i]);  // E[1/r] of the unit kernel
+  if (lq > kHi) e *= std::pow(10.0, kHi - lq);  // a cell 1000 kernels wide: the cube's 1.8823 / q
+  return e / a / (6.0 * std::numbers::pi * viscosity);
 }
 
 double own_solid_fraction(const flow::Grid& g, const Stencil& s, double diameter) {
