@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// `pastemix validate coupling sphere | piston`: the coupling's cases (model/coupling, issue 18) with their
+// `pastemix validate coupling sphere | piston | hindered`: the coupling's cases (model/coupling, issue 18) with their
 // references; the figures of model/coupling/VALIDATION.md. One thread (the cases are serial).
 #include <stdexcept>
 #include <string>
@@ -8,6 +8,7 @@
 
 #include "app/commands.h"
 #include "base/error.h"
+#include "model/coupling/hindered.h"
 #include "model/coupling/piston.h"
 #include "model/coupling/sphere.h"
 
@@ -74,6 +75,21 @@ void register_coupling_commands(CLI::App& app) {
       s.disturbance = false;
       print_sphere(s, sphere_or_input_error(s));
     }
+  });
+
+  auto hs = std::make_shared<coupling::HinderedSettings>();
+  auto no_voidage = std::make_shared<bool>(false);
+  CLI::App* hin = cpl->add_subcommand("hindered", "a uniform suspension settling vs Richardson-Zaki (reported)");
+  hin->add_option("--phi", hs->solid_fraction, "solid fraction (default 0.1)")->check(CLI::Range(0.01, 0.4));
+  hin->add_flag("--no-voidage", *no_voidage, "without Di Felice's voidage correction");
+  hin->callback([hs, no_voidage] {
+    coupling::HinderedSettings s = *hs;
+    s.voidage = !*no_voidage;
+    const coupling::HinderedResult r = coupling::run_hindered(s);
+    fmt::print("hindered phi {:g} ({} spheres of {:g} mm, {}^3 cells of {:g} mm, voidage {}): v_s/v_t {:.4f}, "
+               "n_eff {:.3f} against Richardson-Zaki eps^4.65 = {:.4f}, {:.2f} s\n",
+               s.solid_fraction, r.spheres, 1e3 * s.diameter, s.cells, 1e3 * s.cell, s.voidage ? "on" : "off", r.ratio,
+               r.exponent, r.reference, r.seconds);
   });
 
   CLI::App* pis = cpl->add_subcommand("piston", "a glued block pushed into the paste: the surface rise (no DEM)");
