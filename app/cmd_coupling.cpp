@@ -5,6 +5,7 @@
 #include <string>
 
 #include <fmt/format.h>
+#include <omp.h>
 
 #include "app/commands.h"
 #include "base/error.h"
@@ -49,6 +50,9 @@ void register_coupling_commands(CLI::App& app) {
   CLI::App* validate = group_subcommand(app, "validate", "validations");
   CLI::App* cpl = validate->add_subcommand("coupling", "the particles-paste coupling (model/coupling) against references");
   cpl->require_subcommand(1);
+  // The cases are small and their figures are quoted at one thread (model/coupling/VALIDATION.md): the flow
+  // solver's loops would only wait on each other here.
+  cpl->parse_complete_callback([] { omp_set_num_threads(1); });
 
   struct Opts {
     SphereSettings sphere;

@@ -9,7 +9,7 @@
 
 namespace pastemix {
 
-TEST_CASE("pastemix validate coupling sphere: Bingham Y = 0.08 holds; a box of 8 / 3 cells is exit 2") {
+TEST_CASE("pastemix validate coupling sphere: Bingham Y = 0.08 holds, and a box of 8 / 3 cells is exit 2") {
   const auto held = test::run_pastemix("validate coupling sphere --yield-number 0.08");
   CHECK(held.exit_code == 0);
   CHECK(held.output.find("sphere Bingham Y = 0.08") != std::string::npos);
