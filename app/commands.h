@@ -32,6 +32,8 @@ void register_analysis_commands(CLI::App& app);
 void register_fluid_commands(CLI::App& app);
 // `pastemix validate flow ...`, `pastemix flow run` (the flow solver, app/cmd_flow.cpp).
 void register_flow_commands(CLI::App& app);
+// `pastemix validate coupling sphere | piston | hindered` (the particles-paste coupling, app/cmd_coupling.cpp).
+void register_coupling_commands(CLI::App& app);
 // `pastemix validate flow poiseuille | incline | cliff | slump` (yield-stress cases, app/cmd_flow_bingham.cpp),
 // registered on the `validate flow` subcommand.
 void register_flow_bingham_commands(CLI::App& validate_flow);

@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   pastemix::app::register_analysis_commands(app);
   pastemix::app::register_fluid_commands(app);
   pastemix::app::register_flow_commands(app);
+  pastemix::app::register_coupling_commands(app);
   pastemix::app::register_study_commands(app);
   try {
     app.parse(argc, argv);

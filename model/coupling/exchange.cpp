@@ -38,8 +38,9 @@ Exchange::Exchange(const flow::Grid& g, double width_factor) : g_(g), c_(width_f
 }
 
 std::array<std::vector<Exchange::Row>, 3> Exchange::rows(const ExchangeParticles& p, const flow::Faces& face_mass,
-                                                          const flow::Faces* paste_mask) const {
+                                                          const flow::Faces* paste_mask, std::vector<double>* share) const {
   std::array<std::vector<Row>, 3> out;
+  if (share != nullptr) share->assign(p.centre.size(), 0.0);
   for (int c = 0; c < 3; ++c) out[c].resize(p.centre.size());
   std::array<std::vector<std::pair<long, double>>, 3> acc;
   for (std::size_t i = 0; i < p.centre.size(); ++i) {
@@ -60,12 +61,13 @@ std::array<std::vector<Exchange::Row>, 3> Exchange::rows(const ExchangeParticles
     for (int c = 0; c < 3; ++c) {
       std::sort(acc[c].begin(), acc[c].end(), [](const auto& a, const auto& b) { return a.first < b.first; });
       Row& r = out[c][i];
-      double sum = 0.0;
+      double sum = 0.0, unmasked = 0.0;
       for (std::size_t e = 0; e < acc[c].size(); ++e) {
         const long f = acc[c][e].first;
         double w = acc[c][e].second;
         while (e + 1 < acc[c].size() && acc[c][e + 1].first == f) w += acc[c][++e].second;
         if (wall_face(g_, c, f) || !(face_mass[c][f] > 0.0)) continue;
+        unmasked += w;
         if (paste_mask != nullptr) w *= std::clamp((*paste_mask)[c][f], 0.0, 1.0);
         if (w == 0.0) continue;
         r.face.push_back(f);
@@ -74,6 +76,7 @@ std::array<std::vector<Exchange::Row>, 3> Exchange::rows(const ExchangeParticles
       }
       if (sum > 0.0)
         for (double& w : r.w) w /= sum;
+      if (share != nullptr && unmasked > 0.0) (*share)[i] += sum / unmasked / 3.0;
     }
   }
   return out;
@@ -89,9 +92,7 @@ void Exchange::Row::spread(double amount, std::vector<double>& field) const {
   for (std::size_t e = 0; e < face.size(); ++e) field[face[e]] += w[e] * amount;
 }
 
-ExchangeStats Exchange::apply(double dt, const ExchangeParticles& p, std::vector<std::array<double, 3>>& v,
-                              flow::Faces& u, const flow::Faces& face_mass, const flow::Faces* paste_mask,
-                              std::vector<std::array<double, 3>>& impulse) const {
+void Exchange::check(const ExchangeParticles& p, const std::vector<std::array<double, 3>>& v) const {
   const std::size_t n = p.centre.size();
   if (p.diameter.size() != n || p.mass.size() != n || p.beta.size() != n || p.yield_force.size() != n || v.size() != n)
     throw std::invalid_argument("coupling exchange: particle arrays differ in length");
@@ -101,12 +102,66 @@ ExchangeStats Exchange::apply(double dt, const ExchangeParticles& p, std::vector
       throw std::invalid_argument(fmt::format("coupling exchange: particle {}: mass {} kg, beta {} kg/s, yield force {} N "
                                               "(need mass > 0, beta >= 0, yield force >= 0, finite)",
                                               i, p.mass[i], p.beta[i], p.yield_force[i]));
+}
+
+ExchangeStats Exchange::apply(double dt, const ExchangeParticles& p, std::vector<std::array<double, 3>>& v,
+                              flow::Faces& u, const flow::Faces& face_mass, const flow::Faces* paste_mask,
+                              std::vector<std::array<double, 3>>& impulse) const {
+  check(p, v);
   const Rows W = rows(p, face_mass, paste_mask);
   ExchangeStats st;
-  impulse.assign(n, {0.0, 0.0, 0.0});
+  impulse.assign(p.centre.size(), {0.0, 0.0, 0.0});
   yield_part(dt, p, W, v, u, face_mass, impulse, st);
   for (int c = 0; c < 3; ++c) drag_part(c, dt, p, W, v, u[c], face_mass[c], impulse, st);
   return st;
+}
+
+ExchangeStats Exchange::react(const ExchangeParticles& p, flow::Faces& u, const flow::Faces& face_mass,
+                              const flow::Faces* paste_mask, const std::vector<std::array<double, 3>>& subcycle_impulse) const {
+  if (subcycle_impulse.size() != p.centre.size())
+    throw std::invalid_argument("coupling exchange: sub-cycle impulses and particles differ in length");
+  const Rows W = rows(p, face_mass, paste_mask);
+  ExchangeStats st;
+  for (int c = 0; c < 3; ++c) {
+    std::vector<double> reaction(u[c].size(), 0.0);
+    for (std::size_t i = 0; i < p.centre.size(); ++i) {
+      if (subcycle_impulse[i][c] == 0.0) continue;
+      if (W[c][i].face.empty()) st.dropped_yield += std::abs(subcycle_impulse[i][c]);
+      else W[c][i].spread(-subcycle_impulse[i][c], reaction);
+    }
+    for (std::size_t f = 0; f < u[c].size(); ++f)
+      if (reaction[f] != 0.0) u[c][f] += reaction[f] / face_mass[c][f];
+  }
+  return st;
+}
+
+ExchangeStats Exchange::correct(double dt, const ExchangeParticles& p, std::vector<std::array<double, 3>>& v,
+                                flow::Faces& u, const flow::Faces& face_mass, const flow::Faces* paste_mask,
+                                const std::vector<std::array<double, 3>>& reference,
+                                std::vector<std::array<double, 3>>& impulse) const {
+  check(p, v);
+  if (reference.size() != p.centre.size())
+    throw std::invalid_argument("coupling exchange: reference velocities and particles differ in length");
+  const Rows W = rows(p, face_mass, paste_mask);
+  ExchangeStats st;
+  impulse.assign(p.centre.size(), {0.0, 0.0, 0.0});
+  for (int c = 0; c < 3; ++c) drag_part(c, dt, p, W, v, u[c], face_mass[c], impulse, st, &reference);
+  return st;
+}
+
+std::vector<std::array<double, 3>> Exchange::fluid_velocity(const ExchangeParticles& p, const flow::Faces& u,
+                                                            const flow::Faces& face_mass, const flow::Faces* paste_mask,
+                                                            std::vector<double>& paste_share) const {
+  const Rows W = rows(p, face_mass, paste_mask, &paste_share);
+  std::vector<std::array<double, 3>> out(p.centre.size(), {0.0, 0.0, 0.0});
+  for (std::size_t i = 0; i < p.centre.size(); ++i) {
+    if (W[0][i].face.empty() || W[1][i].face.empty() || W[2][i].face.empty()) {
+      paste_share[i] = 0.0;
+      continue;
+    }
+    for (int c = 0; c < 3; ++c) out[i][c] = W[c][i].at(u[c]);
+  }
+  return out;
 }
 
 void Exchange::yield_part(double dt, const ExchangeParticles& p, const Rows& W, std::vector<std::array<double, 3>>& v,
@@ -168,7 +223,8 @@ int conjugate_gradients(Apply&& apply_A, const std::vector<double>& b, const std
 
 void Exchange::drag_part(int c, double dt, const ExchangeParticles& p, const Rows& W,
                          std::vector<std::array<double, 3>>& v, std::vector<double>& u, const std::vector<double>& M,
-                         std::vector<std::array<double, 3>>& impulse, ExchangeStats& st) const {
+                         std::vector<std::array<double, 3>>& impulse, ExchangeStats& st,
+                         const std::vector<std::array<double, 3>>* reference) const {
   const std::size_t n = p.centre.size(), F = u.size();
   std::vector<double> B(n);  // kg/s: beta with the particle eliminated, beta m / (m + dt beta)
   for (std::size_t i = 0; i < n; ++i) B[i] = p.beta[i] * p.mass[i] / (p.mass[i] + dt * p.beta[i]);
@@ -182,7 +238,7 @@ void Exchange::drag_part(int c, double dt, const ExchangeParticles& p, const Row
   for (std::size_t f = 0; f < F; ++f) rhs[f] = mass_of(f) * u[f], diag[f] = mass_of(f);
   for (std::size_t i = 0; i < n; ++i) {
     if (B[i] == 0.0) continue;
-    W[c][i].spread(dt * B[i] * v[i][c], rhs);
+    W[c][i].spread(dt * B[i] * (reference ? (*reference)[i][c] : v[i][c]), rhs);
     for (std::size_t e = 0; e < W[c][i].face.size(); ++e) diag[W[c][i].face[e]] += dt * B[i] * W[c][i].w[e] * W[c][i].w[e];
   }
   double rel = 0.0;
@@ -196,7 +252,7 @@ void Exchange::drag_part(int c, double dt, const ExchangeParticles& p, const Row
   std::vector<double> reaction(F, 0.0);
   for (std::size_t i = 0; i < n; ++i) {
     if (B[i] == 0.0 || W[c][i].face.empty()) continue;
-    const double J = dt * B[i] * (W[c][i].at(x) - v[i][c]);
+    const double J = dt * B[i] * (W[c][i].at(x) - (reference ? (*reference)[i][c] : v[i][c]));
     impulse[i][c] += J;
     v[i][c] += J / p.mass[i];
     W[c][i].spread(-J, reaction);

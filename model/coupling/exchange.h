@@ -45,6 +45,7 @@ struct ExchangeStats {
   int iterations = 0;              // CG, summed over the components
   double relative_residual = 0.0;  // worst component's, at exit
   int stuck = 0;                   // particles that stuck in the yield part
+  double dropped_yield = 0.0;      // N s, |J_sub| of sub-cycle reactions no reacting face could take
 };
 
 class Exchange {
@@ -57,6 +58,31 @@ class Exchange {
   ExchangeStats apply(double dt, const ExchangeParticles& p, std::vector<std::array<double, 3>>& v, flow::Faces& u,
                       const flow::Faces& face_mass, const flow::Faces* paste_mask,
                       std::vector<std::array<double, 3>>& impulse) const;
+  // After a DEM sub-cycle that ran the drag against the frozen fluid itself (coupled_flow.h: each DEM step
+  // applies the velocity-dependent part implicitly per particle and the yield stick against the fluid velocity
+  // u_ref that `fluid_velocity` gave, and sums the impulses J_sub), the flow step does two things:
+  //  react:   the faces take the sub-cycle's reaction -W^T J_sub (N s per particle), before the viscous solve
+  //           (which spreads it in the same step);
+  //  correct: after the projection, the fluid's own change since u_ref, with the velocity-dependent part
+  //           implicit in both phases: J = dt B (W u' - u_ref), (M + dt W^T B W) u' = M u + dt W^T B u_ref
+  //           (0 when the fluid at the particles did not change: the sub-cycle's drag is not applied twice,
+  //           and a steady state does not depend on dt). impulse (out): J. p.yield_force is not used.
+  // A particle whose support holds no reacting face passes its reaction to none: the sub-cycle gave it no drag
+  // then (fluid_velocity's share 0), unless the paste left its faces during the step; that share is dropped
+  // and reported (ExchangeStats::dropped_yield).
+  ExchangeStats react(const ExchangeParticles& p, flow::Faces& u, const flow::Faces& face_mass,
+                      const flow::Faces* paste_mask, const std::vector<std::array<double, 3>>& subcycle_impulse) const;
+  ExchangeStats correct(double dt, const ExchangeParticles& p, std::vector<std::array<double, 3>>& v, flow::Faces& u,
+                        const flow::Faces& face_mass, const flow::Faces* paste_mask,
+                        const std::vector<std::array<double, 3>>& reference,
+                        std::vector<std::array<double, 3>>& impulse) const;
+  // The fluid velocity each particle's drag sees, W u (m/s), with the weights above, and its paste share: the
+  // masked weights' sum over the unmasked one (mean over the components), 0 where the particle's support holds
+  // no face that takes a reaction (no paste drag: u_p = 0 returned). The caller scales the drag by the share
+  // (a sphere half in the paste: half its drag, as the at-rest pass's submerged fraction).
+  std::vector<std::array<double, 3>> fluid_velocity(const ExchangeParticles& p, const flow::Faces& u,
+                                                    const flow::Faces& face_mass, const flow::Faces* paste_mask,
+                                                    std::vector<double>& paste_share) const;
 
   double tolerance = 1e-13;  // CG, relative residual
   int max_iterations = 2000;
@@ -69,15 +95,19 @@ class Exchange {
     void spread(double amount, std::vector<double>& field) const;    // field_f += w_f amount
   };
   using Rows = std::array<std::vector<Row>, 3>;
-  Rows rows(const ExchangeParticles& p, const flow::Faces& face_mass, const flow::Faces* paste_mask) const;
+  Rows rows(const ExchangeParticles& p, const flow::Faces& face_mass, const flow::Faces* paste_mask,
+            std::vector<double>* share = nullptr) const;
   // Stage 1 (yield, against the frozen u) and stage 2 for one component (implicit drag); both update v, u and
   // impulse, and give the faces exactly the opposite of what the particles get.
+  void check(const ExchangeParticles& p, const std::vector<std::array<double, 3>>& v) const;
   static void yield_part(double dt, const ExchangeParticles& p, const Rows& W, std::vector<std::array<double, 3>>& v,
                          flow::Faces& u, const flow::Faces& face_mass, std::vector<std::array<double, 3>>& impulse,
                          ExchangeStats& st);
+  // reference: nullptr (the particles' own velocities v*), or per particle the fluid velocity the sub-cycle's
+  // drag relaxed it to: then only the fluid's change from it is exchanged (apply_after_subcycle).
   void drag_part(int c, double dt, const ExchangeParticles& p, const Rows& W, std::vector<std::array<double, 3>>& v,
                  std::vector<double>& u, const std::vector<double>& M, std::vector<std::array<double, 3>>& impulse,
-                 ExchangeStats& st) const;
+                 ExchangeStats& st, const std::vector<std::array<double, 3>>* reference = nullptr) const;
   flow::Grid g_;
   double c_;
 };

@@ -167,6 +167,12 @@ AdvectionStats advect(const Grid& g, const Phases& ph, double dt, long step, std
   }
   const Faces& adv = eps != nullptr ? flux_velocity : u0;
   std::vector<double> dilatation(eps != nullptr ? alpha.size() : 0, 0.0);  // sum over the sweeps of div_d(eps u) dt
+  // With particles, the momentum's dilatation terms too (kg/m3 m/s per face, summed over the sweeps), and the
+  // faces whose control volume held both phases in some sweep (their velocity keeps the bounded value).
+  Faces dilatation_momentum;
+  std::array<std::vector<unsigned char>, 3> mixed_face;
+  if (eps != nullptr)
+    for (int c = 0; c < 3; ++c) dilatation_momentum[c].assign(u0[c].size(), 0.0), mixed_face[c].assign(u0[c].size(), 0);
   AdvectionStats st;
   for (int d = 0; d < 3; ++d)
     for (double v : adv[d]) st.max_cfl = std::max(st.max_cfl, std::abs(v) * dt / g.h[d]);
@@ -216,9 +222,13 @@ AdvectionStats advect(const Grid& g, const Phases& ph, double dt, long step, std
       // whatever the step, up to 1000 m/s at density ratio 8300). Transport creates no new extrema, so there
       // the new velocity is bounded by the old ones it depends on (the face and its two neighbours along d,
       // CFL <= 1/2) and the momentum set to match. Single-phase volumes are never touched (the cavity).
-      auto mixed = [&ph](double r) {
+      // With particles the paste fraction of a full cell carries the continuity residual (~1e-10: its fluid is
+      // eps_f,end, the transported paste eps_old alpha - div(eps_f alpha u) dt), so "both phases" starts at a
+      // millionth of either: below that the bound is not needed and the momentum stays conservative.
+      const double pure = eps != nullptr ? 1e-6 : 1e-12;
+      auto mixed = [&ph, pure](double r) {
         const double lo = std::min(ph.rho_air, ph.rho_paste), hi = std::max(ph.rho_air, ph.rho_paste);
-        return r > lo * (1.0 + 1e-12) && r < hi * (1.0 - 1e-12);
+        return r > lo * (1.0 + pure) && r < hi * (1.0 - pure);
       };
       auto bound = [](double& m, double r, double a, double b, double c3) {
         if (!(r > 0.0)) return;
@@ -257,7 +267,12 @@ AdvectionStats advect(const Grid& g, const Phases& ph, double dt, long step, std
         rho_next[f] = rho[c][f] - (Mh - Ml) + rho_c[c][f] * (Vh - Vl);
         // Mixed in the phases, not in the fluid fraction (with particles rho is eps_f rho_f).
         const double e = eps != nullptr ? eps_old_face[c][f] : 1.0;
-        if (mixed(rho[c][f] / e) || mixed(rho_next[f] / e)) bound(mom_next[f], rho_next[f], U(-1), U(0), U(1));
+        const bool two_phase = mixed(rho[c][f] / e) || mixed(rho_next[f] / e);
+        if (two_phase) bound(mom_next[f], rho_next[f], U(-1), U(0), U(1));
+        if (eps != nullptr) {
+          dilatation_momentum[c][f] += mom_c[c][f] * (Vh - Vl);
+          if (two_phase) mixed_face[c][f] = 1;
+        }
       });
       mom[c].swap(mom_next);
       rho[c].swap(rho_next);
@@ -269,9 +284,22 @@ AdvectionStats advect(const Grid& g, const Phases& ph, double dt, long step, std
   // With particles: the sweeps' dilatation terms are taken back, so each cell's paste changes only by its
   // fluxes (the sum telescopes), and the cell's fluid changes by -div(eps u) dt = eps_new - eps_old: a full
   // cell ends full, eps_old - div(eps u) dt = eps_new, to the continuity residual.
-  if (eps != nullptr)
+  // The momentum likewise: a single-phase control volume ends with its old momentum minus what crossed its faces
+  // (the sum over the faces telescopes: the fluid's momentum is kept to round-off, the particles' moving
+  // eps_f notwithstanding; the dilatation terms alone would add rho u div(eps_f u) dt), over the fluid's mass at
+  // the end, eps_f,end rho_f(alpha_end) V, which is the mass the rest of the step gives it.
+  if (eps != nullptr) {
     for (std::size_t i = 0; i < alpha.size(); ++i)
       alpha[i] = ((*eps->old_cell)[i] * alpha[i] - cflag[i] * dilatation[i]) / (*eps->new_cell)[i];
+    const Faces rho_end = face_densities(g, ph, alpha);
+    for (int c = 0; c < 3; ++c)
+      for_faces(g, c, [&](const std::array<int, 3>& q) {
+        const long f = g.face(c, q);
+        if (fixed(c, q) || mixed_face[c][f]) return;
+        const double m = rho_end[c][f] * (*eps->new_face)[c][f];
+        if (m > 0.0) u[c][f] = (mom[c][f] - dilatation_momentum[c][f]) / m;
+      });
+  }
   // Boundary faces keep their velocity (walls, the open side: set by the projection), and so do blocked faces.
   for (int c = 0; c < 3; ++c)
     for_faces(g, c, [&](const std::array<int, 3>& q) {

@@ -130,6 +130,9 @@ class PressureOperator {
   // u -= (dt / rho_f) grad p on every face the projection acts on (the same discrete gradient, p = 0 outside an
   // open side): the pressure-gradient part of a step (a negative dt adds it back).
   void subtract_gradient(double dt, const Faces& rho_face, const std::vector<double>& p, Faces& u) const;
+  // The impulse density of that gradient, out = dt grad p (N s/m3) on the same faces (0 elsewhere): the fluid's
+  // velocity change is -out / rho_f; a particle's share of it (model A) is -V_p times its kernel mean.
+  void gradient_impulse(double dt, const std::vector<double>& p, Faces& out) const;
   // Walls inside the box (obstacle.h), or none: a blocked face drops out of the operator (no flux: Neumann,
   // the pressure may jump across the wall) and the gradient leaves its velocity alone. Kept by pointer.
   void set_blocked(const FaceMask* m) { blocked_ = m; }

@@ -213,6 +213,18 @@ void PressureOperator::subtract_gradient(double dt, const Faces& rho_face, const
   }
 }
 
+void PressureOperator::gradient_impulse(double dt, const std::vector<double>& p, Faces& out) const {
+  const Grid& g = g_;
+  for (int c = 0; c < 3; ++c) out[c].assign(g.face_count(c), 0.0);
+  for (const Link& l : links_) {
+    if (wall(l)) continue;
+    const double k = dt / g.h[l.c];
+    double& v = out[l.c][l.face];
+    if (l.a >= 0 && l.b >= 0) v = k * (p[l.b] - p[l.a]);
+    else v = l.a >= 0 ? k * (0.0 - p[l.a]) * 2.0 : k * (p[l.b] - 0.0) * 2.0;
+  }
+}
+
 ProjectionStats project(const Grid& g, double dt, const Faces& rho_face, Faces& u, std::vector<double>& p, double tol,
                         int max_iterations) {
   PressureOperator op(g);

@@ -19,6 +19,7 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <vector>
 
 #include "model/flow/advection.h"
@@ -78,6 +79,29 @@ class FlowSolver {
   void set_next_fluid_fraction(std::vector<double> eps_end, bool with_rate = true);
   const std::vector<double>& fluid_fraction() const { return eps_; }  // empty: 1 everywhere
 
+  // The particles' momentum exchange (model/coupling/exchange.h), in a step with particles: called after
+  // gravity and the last pressure gradient (so a paste at rest is at rest there) and before the viscous solve
+  // and the projection (the viscous step spreads the reaction in the same step), with dt, the faces' velocity
+  // (in/out, m/s) and the fluid's mass in each face's control volume (kg, eps_f,end rho_f V: the mass the
+  // viscous step uses). The hook must give the faces exactly the opposite of what it gives the particles.
+  // Empty: no exchange.
+  // A second hook, `after`, is called at the end of the step (after the projection, with the same masses):
+  // the particles' drag on the fluid's change over the step (exchange.h, correct); the divergence it leaves
+  // is the next step's continuity projection's.
+  using ExchangeHook = std::function<void(double dt, Faces& u, const Faces& fluid_mass)>;
+  void set_exchange(ExchangeHook before, ExchangeHook after = {}) {
+    exchange_ = std::move(before), exchange_after_ = std::move(after);
+  }
+  // The pressure impulses of the last step with particles, dt grad p per face (N s/m3; 0 on walls and where no
+  // gradient acts): the continuity projection's (it acted on the fluid's mass at the step's start, eps_f,start:
+  // the particles' share is -V_p times its kernel mean at their start positions) and the projection's (mass at
+  // the end: the particles at their end positions). Model A: with both, particles + fluid feel no net
+  // pressure force in a periodic box (momentum test, tests/model/coupling/momentum_test.cpp).
+  const Faces& continuity_impulse() const { return continuity_impulse_; }
+  const Faces& pressure_impulse() const { return pressure_impulse_; }
+  // kg per face: eps_f rho_f(alpha) V now (eps_f = 1 without particles).
+  Faces fluid_mass() const;
+
   double next_time_step() const;
   StepStats step(double dt);
   // Steps until time t (the last step shortened to land on it); returns the steps taken.
@@ -117,6 +141,8 @@ class FlowSolver {
   std::vector<double> p_, alpha_, mu_;      // p_: the pressure (Pa)
   std::vector<double> eps_, eps_next_;      // fluid fraction now and at the end of the next step (empty: 1)
   bool with_rate_ = true;
+  ExchangeHook exchange_, exchange_after_;
+  Faces continuity_impulse_, pressure_impulse_;  // N s/m3, set by a step with particles
   bool pressure_ready_ = false;             // p_ balances gravity (set by the first step after the paste changes)
   double t_ = 0.0;
   StepStats last_;

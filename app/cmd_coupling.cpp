@@ -1,0 +1,114 @@
+// SPDX-License-Identifier: MIT
+// `pastemix validate coupling sphere | piston | hindered`: the coupling's cases (model/coupling, issue 18) with their
+// references; the figures of model/coupling/VALIDATION.md. One thread (the cases are serial).
+#include <stdexcept>
+#include <string>
+
+#include <fmt/format.h>
+#include <omp.h>
+
+#include "app/commands.h"
+#include "base/error.h"
+#include "model/coupling/hindered.h"
+#include "model/coupling/piston.h"
+#include "model/coupling/sphere.h"
+
+namespace pastemix::app {
+
+namespace {
+
+using coupling::SphereResult;
+using coupling::SphereSettings;
+
+void print_sphere(const SphereSettings& s, const SphereResult& r) {
+  if (s.yield_number > 0.0) {
+    fmt::print("sphere Bingham Y = {:g} (m = {:g} s), h/d {:g}, L/d {:g}: slip {:.4g} m/s, max |v| {:.3g} m/s and "
+               "settled {:.3g} mm over the last {:.3g} s, {} cells, {} cycles, {:.2f} s\n",
+               s.yield_number, s.regularisation, s.cell_over_diameter, s.box_over_diameter, r.velocity,
+               r.max_speed_late, 1e3 * r.travel, 0.5 * r.cycles * s.coupling_interval, r.cells, r.cycles, r.seconds);
+    return;
+  }
+  fmt::print("sphere h/d {:g}, L/d {:g}, disturbance correction {}: slip {:.5g} m/s [{:.5g}, {:.5g}] against "
+             "Hasimoto {:.5g} (Stokes {:.5g}): error {:+.2f} %, Re {:.3g}, {} cells, {} cycles, {:.2f} s\n",
+             s.cell_over_diameter, s.box_over_diameter, s.disturbance ? "on" : "off", r.velocity, r.slip_min,
+             r.slip_max, r.reference, r.stokes, 100.0 * r.error, r.reynolds, r.cells, r.cycles, r.seconds);
+}
+
+SphereResult sphere_or_input_error(const SphereSettings& s) {
+  try {
+    return coupling::run_sphere(s);
+  } catch (const std::invalid_argument& e) {
+    throw InputError("--cell-over-d", 0, "",
+                     fmt::format("--cell-over-d {:g} / --box-over-d {:g}: {}", s.cell_over_diameter,
+                                 s.box_over_diameter, e.what()));
+  }
+}
+
+}  // namespace
+
+void register_coupling_commands(CLI::App& app) {
+  CLI::App* validate = group_subcommand(app, "validate", "validations");
+  CLI::App* cpl = validate->add_subcommand("coupling", "the particles-paste coupling (model/coupling) against references");
+  cpl->require_subcommand(1);
+  // The cases are small and their figures are quoted at one thread (model/coupling/VALIDATION.md): the flow
+  // solver's loops would only wait on each other here.
+  cpl->parse_complete_callback([] { omp_set_num_threads(1); });
+
+  struct Opts {
+    SphereSettings sphere;
+    bool only_without = false, toy = false;
+    double cell = 0.01;
+  };
+  auto o = std::make_shared<Opts>();
+  CLI::App* sph = cpl->add_subcommand("sphere", "a sphere settling in a periodic box vs Hasimoto; Bingham stick");
+  sph->add_option("--cell-over-d", o->sphere.cell_over_diameter, "cell size / sphere diameter (default 1)")
+      ->check(CLI::PositiveNumber);
+  sph->add_option("--box-over-d", o->sphere.box_over_diameter, "box side / diameter, whole cells (default 8)")
+      ->check(CLI::PositiveNumber);
+  sph->add_option("--yield-number", o->sphere.yield_number,
+                  "Y = tau_y / (g d (rho_p - rho_f)): > 0 runs the Bingham paste (default 0: Newtonian)")
+      ->check(CLI::NonNegativeNumber);
+  sph->add_option("--interval", o->sphere.coupling_interval, "coupling interval, s (default 0.005)")
+      ->check(CLI::PositiveNumber);
+  sph->add_flag("--without-correction", o->only_without, "only the run without the disturbance correction");
+  sph->callback([o] {
+    SphereSettings s = o->sphere;
+    s.disturbance = !o->only_without;
+    print_sphere(s, sphere_or_input_error(s));
+    if (s.yield_number == 0.0 && s.disturbance) {
+      s.disturbance = false;
+      print_sphere(s, sphere_or_input_error(s));
+    }
+  });
+
+  auto hs = std::make_shared<coupling::HinderedSettings>();
+  auto no_voidage = std::make_shared<bool>(false);
+  CLI::App* hin = cpl->add_subcommand("hindered", "a uniform suspension settling vs Richardson-Zaki (reported)");
+  hin->add_option("--phi", hs->solid_fraction, "solid fraction (default 0.1)")->check(CLI::Range(0.01, 0.4));
+  hin->add_flag("--no-voidage", *no_voidage, "without Di Felice's voidage correction");
+  hin->callback([hs, no_voidage] {
+    coupling::HinderedSettings s = *hs;
+    s.voidage = !*no_voidage;
+    const coupling::HinderedResult r = coupling::run_hindered(s);
+    fmt::print("hindered phi {:g} ({} spheres of {:g} mm, {}^3 cells of {:g} mm, voidage {}): v_s/v_t {:.4f}, "
+               "n_eff {:.3f} against Richardson-Zaki eps^4.65 = {:.4f}, {:.2f} s\n",
+               s.solid_fraction, r.spheres, 1e3 * s.diameter, s.cells, 1e3 * s.cell, s.voidage ? "on" : "off", r.ratio,
+               r.exponent, r.reference, r.seconds);
+  });
+
+  CLI::App* pis = cpl->add_subcommand("piston", "a glued block pushed into the paste: the surface rise (no DEM)");
+  pis->add_option("--cell", o->cell, "cubic cell, m (default 0.01)")->check(CLI::PositiveNumber);
+  pis->add_flag("--toy", o->toy, "drop d eps_f/dt from the projection (the toy coupling: no rise)");
+  pis->callback([o] {
+    coupling::PistonSettings s;
+    s.cell = o->cell;
+    s.with_rate = !o->toy;
+    const coupling::PistonResult r = coupling::run_piston(s);
+    fmt::print("piston {:g} m cells{}: rise {:.5g} mm (expected {:.5g} mm, error {:.3g}), paste volume error {:.3g}, "
+               "alpha in [{:.3g}, {:.6g}], {:.2f} s\n",
+               s.cell, o->toy ? " (toy: no d eps_f/dt)" : "", 1e3 * r.rise_measured, 1e3 * r.rise_expected,
+               r.relative_error, r.volume_error, r.alpha_min, r.alpha_max, r.seconds);
+  });
+}
+
+}  // namespace pastemix::app

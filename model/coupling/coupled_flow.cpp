@@ -1,0 +1,228 @@
+// SPDX-License-Identifier: MIT
+#include "model/coupling/coupled_flow.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "base/error.h"
+
+namespace pastemix::coupling {
+
+namespace {
+using Vec = std::array<double, 3>;
+
+double sphere_volume(double d) { return std::numbers::pi * d * d * d / 6.0; }  // m3
+
+// A face of component c on one of the box's walls or open sides (its impulse is not a pressure gradient).
+bool box_face(const flow::Grid& g, int c, const std::array<int, 3>& q) { return g.boundary_face(c, q[c]); }
+}  // namespace
+
+CoupledFlow::CoupledFlow(flow::FlowSolver& flow, CouplingSettings settings)
+    : flow_(flow), s_(settings), exchange_(flow.grid(), settings.width_factor) {}
+
+std::vector<double> CoupledFlow::fluid_fraction(const CoupledParticles& p) const {
+  std::vector<double> eps = solid_fraction(flow_.grid(), p.x, p.d, s_.width_factor);
+  for (std::size_t c = 0; c < eps.size(); ++c) {
+    eps[c] = 1.0 - eps[c];
+    if (!(eps[c] > 0.0))
+      throw RuntimeFailure(fmt::format("coupling: the particles fill cell {} (fluid fraction {:.4g}): the kernel "
+                                       "width c = {} is too narrow for this packing", c, eps[c], s_.width_factor));
+  }
+  return eps;
+}
+
+void CoupledFlow::start(const CoupledParticles& p) {
+  flow_.set_fluid_fraction(fluid_fraction(p));
+  x_flow_ = p.x;
+  pending_.assign(p.size(), {0.0, 0.0, 0.0});
+}
+
+Vec CoupledFlow::face_mean(const Stencil& s, const flow::Faces& f) const {
+  const flow::Grid& g = flow_.grid();
+  Vec out{};
+  if (s.empty()) return out;
+  for (int c = 0; c < 3; ++c) {
+    double sum = 0.0, weight = 0.0;
+    for (const auto& [k, wk] : s.axis[2])
+      for (const auto& [j, wj] : s.axis[1])
+        for (const auto& [i, wi] : s.axis[0]) {
+          const std::array<int, 3> q{i, j, k};
+          std::array<int, 3> hi = q;
+          hi[c] = g.periodic(c) ? (q[c] + 1) % g.n[c] : q[c] + 1;
+          const double half = 0.5 * wi * wj * wk;
+          for (const auto& face : {q, hi}) {
+            if (box_face(g, c, face)) continue;
+            sum += half * f[c][g.face(c, face)];
+            weight += half;
+          }
+        }
+    out[c] = weight > 0.0 ? sum / weight : 0.0;
+  }
+  return out;
+}
+
+std::array<double, 3> CoupledFlow::fluid_momentum() const {
+  const flow::Faces m = flow_.fluid_mass();
+  Vec out{};
+  for (int c = 0; c < 3; ++c)
+    for (std::size_t f = 0; f < m[c].size(); ++f) out[c] += m[c][f] * flow_.velocity()[c][f];
+  return out;
+}
+
+CoupledFlow::Start CoupledFlow::drag_at_start(const CoupledParticles& p) const {
+  const flow::Grid& g = flow_.grid();
+  const std::size_t n = p.size();
+  const std::vector<double> none(n, 0.0);
+  // The fluid as it is now (weights at the cycle's start): u_p, the paste share, and the drag coefficients at
+  // the slip v - W u^n and the fluid fraction the others leave (drag.h), frozen over the sub-cycle.
+  const flow::Faces mass0 = flow_.fluid_mass(), mask0 = flow::face_means(g, flow_.alpha());
+  Start s0;
+  s0.beta.assign(n, 0.0);
+  s0.u = exchange_.fluid_velocity({p.x, p.d, p.m, none, none}, flow_.velocity(), mass0, &mask0, s0.share);
+  const std::vector<double>& eps_now = flow_.fluid_fraction();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (s0.share[i] == 0.0) continue;
+    const Stencil s = stencil(g, p.x[i], p.d[i], s_.width_factor);
+    const double seen = eps_now.empty() ? 1.0 : interpolate(g, s, eps_now);
+    const double eps = std::min(1.0, seen + own_solid_fraction(g, s, p.d[i]));
+    const double mu = interpolate(g, s, flow_.viscosity());
+    const Vec& u = s0.u[i];
+    const double slip = std::hypot(p.v[i][0] - u[0], p.v[i][1] - u[1], p.v[i][2] - u[2]);
+    s0.beta[i] = s0.share[i] * drag_coefficients(p.drag[i], p.d[i], s_.width_factor, slip, eps, mu, g.h, s_.closure).beta;
+  }
+  return s0;
+}
+
+// One DEM step of particle i: the other forces, the velocity-dependent drag implicit against the frozen u_p
+// (backward Euler, v' = (v + a dt + (beta dt / m) u_p) / (1 + beta dt / m): stable at any beta dt / m, and it
+// lands on the terminal slip), the yield stick, the drift. The drag impulses are summed into sub (J_sub).
+void CoupledFlow::dem_step(CoupledParticles& p, std::size_t i, double dt, int steps, const ExtraForce& extra,
+                           const Start& s0, std::vector<Vec>& sub, CycleStats& st) const {
+  const flow::Grid& g = flow_.grid();
+  const Vec& u = s0.u[i];
+  Vec F{};
+  const Vec fx = extra ? extra(i, p) : Vec{};
+  for (int c = 0; c < 3; ++c) F[c] = p.m[i] * s_.gravity[c] + pending_[i][c] / (steps * dt) + fx[c];
+  Vec& v = p.v[i];
+  const double a = s0.beta[i] * dt / p.m[i];
+  for (int c = 0; c < 3; ++c) {
+    const double free = v[c] + F[c] / p.m[i] * dt;
+    const double next = (free + a * u[c]) / (1.0 + a);
+    sub[i][c] += p.m[i] * (next - free);
+    v[c] = next;
+  }
+  // The yield part in the same update (as fluid/drag_kick.h): it removes at most F_y dt / (1 + a) of momentum
+  // from the slip the linear part left, so that the terminal slip is (F - F_y) / beta and a particle sticks
+  // exactly when its other forces are below F_y.
+  const double bound = s0.share[i] * p.drag[i].rest * dt / (1.0 + a);  // N s
+  const Vec w{v[0] - u[0], v[1] - u[1], v[2] - u[2]};
+  const double speed = std::hypot(w[0], w[1], w[2]);
+  if (bound > 0.0 && speed > 0.0) {
+    const bool stick = p.m[i] * speed <= bound;
+    const double scale = stick ? p.m[i] : bound / speed;
+    st.stuck_steps += stick ? 1 : 0;
+    for (int c = 0; c < 3; ++c) {
+      const double J = -scale * w[c];
+      sub[i][c] += J;
+      v[c] += J / p.m[i];
+    }
+  }
+  for (int c = 0; c < 3; ++c) {
+    double& x = p.x[i][c];
+    x += v[c] * dt;
+    const double L = g.n[c] * g.h[c];
+    if (g.periodic(c) && (x < g.origin[c] || x >= g.origin[c] + L))  // only then: a wrap rounds
+      x = g.origin[c] + std::fmod(std::fmod(x - g.origin[c], L) + L, L);
+  }
+}
+
+// The flow over the interval T, eps_f linear in time between the start and the end positions; the exchange's
+// hooks in each sub-step; then the particles' pending pressure impulses.
+void CoupledFlow::flow_interval(CoupledParticles& p, double T, const Start& s0, const std::vector<Vec>& sub,
+                                CycleStats& st) {
+  const flow::Grid& g = flow_.grid();
+  const std::size_t n = p.size();
+  const std::vector<double> none(n, 0.0);
+  const std::vector<double> eps_start = flow_.fluid_fraction().empty() ? std::vector<double>(g.cell_count(), 1.0)
+                                                                       : flow_.fluid_fraction();
+  const std::vector<double> eps_end = fluid_fraction(p);
+  const int parts = std::max(1, static_cast<int>(std::ceil(T / flow_.next_time_step() * (1.0 - 1e-12))));
+  const ExchangeParticles view{p.x, p.d, p.m, s0.beta, none};
+  std::vector<Vec> impulse, reference = s0.u;
+  flow::Faces at_start, at_end;  // N s/m3: the pressure impulses, split by the positions their fluid mass had
+  for (int c = 0; c < 3; ++c) at_start[c].assign(g.face_count(c), 0.0), at_end[c].assign(g.face_count(c), 0.0);
+  for (int j = 0; j < parts; ++j) {
+    const double r0 = static_cast<double>(j) / parts, r1 = static_cast<double>(j + 1) / parts;
+    std::vector<double> eps(eps_end);
+    if (j + 1 < parts)
+      for (std::size_t c = 0; c < eps.size(); ++c) eps[c] = eps_start[c] + r1 * (eps_end[c] - eps_start[c]);
+    flow_.set_next_fluid_fraction(std::move(eps));
+    // The books of the exchange: the faces' momentum change inside the hooks against the particles' impulses.
+    auto book = [&](const flow::Faces& before, const flow::Faces& u, const flow::Faces& mass, const std::vector<Vec>& J) {
+      for (int c = 0; c < 3; ++c) {
+        for (std::size_t f = 0; f < u[c].size(); ++f) st.fluid_exchange[c] += mass[c][f] * (u[c][f] - before[c][f]);
+        for (std::size_t i = 0; i < n; ++i) st.particle_exchange[c] += J[i][c], st.exchange_scale += std::abs(J[i][c]);
+      }
+    };
+    auto react = [&](double, flow::Faces& u, const flow::Faces& mass) {
+      if (j != 0) return;  // the sub-cycle's reaction once, in the first sub-step
+      const flow::Faces mask = flow::face_means(g, flow_.alpha()), before = u;
+      st.dropped_yield += exchange_.react(view, u, mass, &mask, sub).dropped_yield;
+      book(before, u, mass, sub);
+    };
+    auto correct = [&](double h, flow::Faces& u, const flow::Faces& mass) {
+      const flow::Faces mask = flow::face_means(g, flow_.alpha()), before = u;
+      const ExchangeStats e = exchange_.correct(h, view, p.v, u, mass, &mask, reference, impulse);
+      st.exchange_iterations += e.iterations;
+      book(before, u, mass, impulse);
+      // The next sub-step's change is measured from where this one left the fluid at the particles.
+      std::vector<double> unused;
+      if (j + 1 < parts) reference = exchange_.fluid_velocity(view, u, mass, &mask, unused);
+    };
+    flow_.set_exchange(react, correct);
+    try {
+      flow_.step(T / parts);
+    } catch (...) {
+      flow_.set_exchange({});
+      throw;
+    }
+    flow_.set_exchange({});
+    ++st.flow_steps;
+    const flow::Faces& ic = flow_.continuity_impulse();
+    const flow::Faces& ip = flow_.pressure_impulse();
+    for (int c = 0; c < 3; ++c)
+      for (std::size_t f = 0; f < at_start[c].size(); ++f) {
+        const double a = ic[c].empty() ? 0.0 : ic[c][f], b = ip[c][f];
+        at_start[c][f] += (1.0 - r0) * a + (1.0 - r1) * b;
+        at_end[c][f] += r0 * a + r1 * b;
+      }
+  }
+  // Model A's pressure-gradient force, pending for the next sub-cycle.
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec a = face_mean(stencil(g, x_flow_[i], p.d[i], s_.width_factor), at_start);
+    const Vec b = face_mean(stencil(g, p.x[i], p.d[i], s_.width_factor), at_end);
+    const double V = sphere_volume(p.d[i]);
+    for (int c = 0; c < 3; ++c) pending_[i][c] = -V * (a[c] + b[c]);
+  }
+  x_flow_ = p.x;
+}
+
+CycleStats CoupledFlow::cycle(CoupledParticles& p, int steps, double dt, const ExtraForce& extra) {
+  const std::size_t n = p.size();
+  if (p.v.size() != n || p.d.size() != n || p.m.size() != n || p.drag.size() != n || x_flow_.size() != n)
+    throw std::invalid_argument("coupling: particle arrays differ in length (or start() was not called)");
+  if (steps < 1 || !(dt > 0.0)) throw std::invalid_argument("coupling: a cycle needs steps >= 1 and dt > 0");
+  CycleStats st;
+  const Start s0 = drag_at_start(p);
+  std::vector<Vec> sub(n, {0.0, 0.0, 0.0});
+  for (int k = 0; k < steps; ++k)
+    for (std::size_t i = 0; i < n; ++i) dem_step(p, i, dt, steps, extra, s0, sub, st);
+  flow_interval(p, steps * dt, s0, sub, st);
+  return st;
+}
+
+}  // namespace pastemix::coupling

@@ -1,0 +1,103 @@
+// SPDX-License-Identifier: MIT
+// Particles and the paste flow coupled both ways over one coupling interval (issue 18, layer 3): what the
+// engine's `dynamics = "flow"` runs, and what the coupling's validations drive without the engine (particles as
+// plain arrays; contacts, if any, come in as an extra force).
+//
+// One cycle of `steps` DEM steps of dt (the coupling interval T = steps dt):
+//   1. Drag coefficients at the cycle's start (drag.h: the particle's law on the slip v - W u^n, the voidage the
+//      others leave, the disturbance correction), u_p = W u^n frozen (the exchange's masked weights, scaled by
+//      the particle's paste share).
+//   2. DEM sub-cycle, each step: v += (m g + P / T + f_extra) dt / m (P: the pending pressure impulse, below);
+//      the velocity-dependent drag implicit against u_p (backward Euler, stable at any beta dt / m); the yield
+//      part in the same update (it removes at most F_y dt / (1 + beta dt / m) of momentum, never reversing the
+//      slip: the terminal slip is (F - F_y) / beta, and a particle sticks exactly when F <= F_y); x += v dt.
+//      The drag impulses are summed, J_sub.
+//   3. Flow over T, in k equal sub-steps (k from the flow's CFL bound at the start), eps_f from the particles'
+//      new positions (kernel.h; linear in time between the cycle's start and end within the sub-steps). In the
+//      first sub-step the faces take -W^T J_sub before the viscous solve (FlowSolver::set_exchange `before`:
+//      the implicit viscous step spreads it within the step, so a steady state does not depend on dt); after
+//      each sub-step's projection (`after`), the fluid's own change at the particles is exchanged with the
+//      velocity-dependent drag implicit in both phases (exchange.h, correct).
+//   4. Model A's pressure-gradient force on the particles, -V_p grad p (buoyancy counted once, no separate
+//      rho_f V g): each sub-step's pressure impulses (FlowSolver::continuity_impulse / pressure_impulse, dt grad p
+//      per face) acted on the fluid's mass eps_f at known times; the particles get the complement,
+//      -V_p (kernel mean of the impulses) with the kernel at the matching positions (the start and end
+//      positions, mixed as eps_f was), so that in a periodic box the pressure exerts no net force on the
+//      mixture. That impulse is pending: it is given over the next sub-cycle (step 2).
+// Momentum: gravity is the only external force in a periodic box; particles + fluid + pending impulses gain
+// exactly M g t (momentum_test.cpp). Serial over the particles, in their order: independent of the threads.
+#pragma once
+
+#include <array>
+#include <functional>
+#include <vector>
+
+#include "model/coupling/drag.h"
+#include "model/coupling/exchange.h"
+#include "model/coupling/kernel.h"
+#include "model/flow/solver.h"
+
+namespace pastemix::coupling {
+
+struct CoupledParticles {
+  std::vector<std::array<double, 3>> x, v;  // m, m/s
+  std::vector<double> d, m;                 // m, kg
+  std::vector<SphereDrag> drag;             // each particle's drag law in the paste (drag.h)
+  std::size_t size() const { return x.size(); }
+};
+
+struct CouplingSettings {
+  double width_factor = kDefaultWidthFactor;  // kernel width c (kernel.h)
+  DragClosure closure;                        // voidage and disturbance corrections (drag.h)
+  std::array<double, 3> gravity{0.0, 0.0, -9.81};  // m/s2, on the particles (the flow has its own)
+};
+
+struct CycleStats {
+  int flow_steps = 0;
+  int stuck_steps = 0;          // particle-steps the yield part held
+  int exchange_iterations = 0;  // CG, summed
+  double dropped_yield = 0.0;   // N s (exchange.h)
+  // The exchange's books (N s): what the particles got from the paste's drag over the cycle (the sub-cycle's
+  // yield impulses and the implicit drag's), what the faces' momentum changed by inside the exchange, and
+  // sum |J| over particles and components (the scale of the first two).
+  std::array<double, 3> particle_exchange{}, fluid_exchange{};
+  double exchange_scale = 0.0;
+};
+
+class CoupledFlow {
+ public:
+  // The flow must be the particles' box: one grid, its paste already set. extra(i, x, v) -> N: a force besides
+  // gravity and the fluid's (contacts), or empty.
+  using ExtraForce = std::function<std::array<double, 3>(std::size_t, const CoupledParticles&)>;
+  CoupledFlow(flow::FlowSolver& flow, CouplingSettings settings);
+
+  // The particles' fluid fraction into the flow, at their current positions (call once, before the first cycle).
+  void start(const CoupledParticles& p);
+  CycleStats cycle(CoupledParticles& p, int steps, double dt, const ExtraForce& extra = {});
+
+  const std::vector<std::array<double, 3>>& pending_impulse() const { return pending_; }  // N s per particle
+  // N s: sum over faces of eps_f rho_f V u (the fluid's momentum, the masses the flow step ends with).
+  std::array<double, 3> fluid_momentum() const;
+  const flow::FlowSolver& flow() const { return flow_; }
+
+ private:
+  using Vec = std::array<double, 3>;
+  struct Start {  // per particle, at the cycle's start: u_p (m/s), paste share, beta (kg/s)
+    std::vector<Vec> u;
+    std::vector<double> share, beta;
+  };
+  Start drag_at_start(const CoupledParticles& p) const;
+  void dem_step(CoupledParticles& p, std::size_t i, double dt, int steps, const ExtraForce& extra, const Start& s0,
+                std::vector<Vec>& sub, CycleStats& st) const;
+  void flow_interval(CoupledParticles& p, double T, const Start& s0, const std::vector<Vec>& sub, CycleStats& st);
+  std::vector<double> fluid_fraction(const CoupledParticles& p) const;  // eps_f = 1 - eps_s per cell
+  // Kernel mean of face impulses at a position, over the faces that are not box walls (renormalised there).
+  std::array<double, 3> face_mean(const Stencil& s, const flow::Faces& f) const;
+  flow::FlowSolver& flow_;
+  CouplingSettings s_;
+  Exchange exchange_;
+  std::vector<std::array<double, 3>> x_flow_;  // m: positions at the last flow step (its eps_f)
+  std::vector<std::array<double, 3>> pending_;
+};
+
+}  // namespace pastemix::coupling

@@ -1,0 +1,77 @@
+// SPDX-License-Identifier: MIT
+#include "model/coupling/hindered.h"
+
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <numbers>
+#include <random>
+
+#include "model/coupling/coupled_flow.h"
+
+namespace pastemix::coupling {
+
+HinderedResult run_hindered(const HinderedSettings& s) {
+  const auto t0 = std::chrono::steady_clock::now();
+  constexpr double kG = 9.81, kPi = std::numbers::pi;  // m/s2
+  const double d = s.diameter, mu = s.viscosity;
+  flow::Grid g;
+  g.n = {s.cells, s.cells, s.cells};
+  g.h = {s.cell, s.cell, s.cell};
+  for (auto& b : g.bc) b.type = flow::BoundaryType::periodic;
+  const double L = s.cells * s.cell, V_box = L * L * L, V_p = kPi * d * d * d / 6.0;
+  const int n = static_cast<int>(std::lround(s.solid_fraction * V_box / V_p));
+  const double m_p = s.rho_particle * V_p, M = n * m_p + s.rho_fluid * (V_box - n * V_p);
+  const double G = M * kG / V_box;  // Pa/m, the mean gradient that holds the mixture
+  flow::Phases ph;
+  ph.rho_paste = s.rho_fluid;
+  ph.paste = std::make_shared<flow::Newtonian>(mu);
+  flow::FlowSettings fs;
+  fs.gravity = {0.0, 0.0, -kG + G / s.rho_fluid};
+  fs.max_time_step = s.coupling_interval;
+  flow::FlowSolver flow(g, ph, fs);
+  flow.add_paste_box({0, 0, 0}, {L, L, L});
+  CouplingSettings cs;
+  cs.closure.voidage = s.voidage;
+  cs.gravity = {0.0, 0.0, -kG};
+  CoupledFlow cf(flow, cs);
+  SphereDrag stokes;  // Stokes's drag: the law the reference's v_t is of
+  stokes.magnitude = [=](double v) { return 3.0 * kPi * mu * d * v; };
+  stokes.reynolds = [=, rho = s.rho_fluid](double v) { return rho * v * d / mu; };
+  CoupledParticles p;
+  std::mt19937_64 rng(s.seed);
+  std::uniform_real_distribution<double> U(0.0, 1.0);
+  for (int i = 0; i < n; ++i) {
+    p.x.push_back({L * U(rng), L * U(rng), L * U(rng)});
+    p.v.push_back({0.0, 0.0, 0.0});
+    p.d.push_back(d);
+    p.m.push_back(m_p);
+    p.drag.push_back(stokes);
+  }
+  cf.start(p);
+  const CoupledFlow::ExtraForce pressure = [&](std::size_t, const CoupledParticles&) {
+    return std::array<double, 3>{0.0, 0.0, V_p * G};
+  };
+  const double v_t = (s.rho_particle - s.rho_fluid) * kG * d * d / (18.0 * mu), eps = 1.0 - s.solid_fraction;
+  double sum = 0.0;
+  int count = 0;
+  for (int k = 1; k <= s.cycles; ++k) {
+    cf.cycle(p, 1, s.coupling_interval, pressure);
+    if (2 * k <= s.cycles) continue;
+    double vp = 0.0;
+    for (const auto& v : p.v) vp += v[2];
+    vp /= n;
+    const double uf = cf.fluid_momentum()[2] / (M - n * m_p);
+    sum += -eps * (vp - uf);  // m/s, downward positive
+    ++count;
+  }
+  HinderedResult r;
+  r.spheres = n;
+  r.ratio = sum / count / v_t;
+  r.exponent = std::log(r.ratio) / std::log(eps);
+  r.reference = std::pow(eps, 4.65);
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
+}  // namespace pastemix::coupling
