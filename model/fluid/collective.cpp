@@ -37,22 +37,20 @@ double disc_union_area(const std::vector<double>& cx, const std::vector<double>&
     lo = std::max(0L, static_cast<long>(std::floor((cy[k] - r[k] - y_lo) / step)));
     hi = std::min(rows - 1, static_cast<long>(std::floor((cy[k] + r[k] - y_lo) / step)));
   };
-  // Half the mean chord of disc k over strip `row`; false where the disc does not reach into the strip.
-  auto half_chord = [&](std::size_t k, long row, double& half) {
-    const double ya = std::max(y_lo + static_cast<double>(row) * step - cy[k], -r[k]);
-    const double yb = std::min(y_lo + static_cast<double>(row + 1) * step - cy[k], r[k]);
-    if (yb <= ya) return false;
-    half = 0.5 * (primitive(yb, r[k]) - primitive(ya, r[k])) / step;
-    return true;
+  // Disc k's extent in strip `row`, relative to its centre: [ya, yb] (empty where yb <= ya).
+  auto extent = [&](std::size_t k, long row, double& lower, double& upper) {
+    lower = std::max(y_lo + static_cast<double>(row) * step - cy[k], -r[k]);
+    upper = std::min(y_lo + static_cast<double>(row + 1) * step - cy[k], r[k]);
+    return upper > lower;
   };
   std::vector<std::size_t> start(static_cast<std::size_t>(rows) + 1, 0);
-  double half = 0.0;
+  double ya = 0.0, yb = 0.0;
   for (std::size_t k = 0; k < n; ++k) {
     if (!(r[k] > 0.0)) continue;
     long lo = 0, hi = 0;
     strips(k, lo, hi);
     for (long row = lo; row <= hi; ++row)
-      if (half_chord(k, row, half)) ++start[static_cast<std::size_t>(row) + 1];
+      if (extent(k, row, ya, yb)) ++start[static_cast<std::size_t>(row) + 1];
   }
   for (std::size_t i = 0; i < static_cast<std::size_t>(rows); ++i) start[i + 1] += start[i];
   std::vector<std::pair<double, double>> iv(start.back(), {0.0, 0.0});
@@ -61,8 +59,16 @@ double disc_union_area(const std::vector<double>& cx, const std::vector<double>&
     if (!(r[k] > 0.0)) continue;
     long lo = 0, hi = 0;
     strips(k, lo, hi);
-    for (long row = lo; row <= hi; ++row)
-      if (half_chord(k, row, half)) iv[fill[static_cast<std::size_t>(row)]++] = {cx[k] - half, cx[k] + half};
+    // Half the mean chord over each strip the disc crosses. Neighbouring strips share a boundary (the same
+    // expression of the same row number, so the same double): its primitive is evaluated once.
+    double at = NAN, prim = 0.0;
+    for (long row = lo; row <= hi; ++row) {
+      if (!extent(k, row, ya, yb)) continue;
+      const double below = ya == at ? prim : primitive(ya, r[k]);
+      prim = primitive(yb, r[k]), at = yb;
+      const double half = 0.5 * (prim - below) / step;
+      iv[fill[static_cast<std::size_t>(row)]++] = {cx[k] - half, cx[k] + half};
+    }
   }
   double length = 0.0;
   for (std::size_t row = 0; row < static_cast<std::size_t>(rows); ++row) {

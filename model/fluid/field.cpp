@@ -60,6 +60,8 @@ void FluidField::update(const Particles& p, const std::vector<std::uint32_t>* pa
     if (rest_region_.size() != n) {
       phi_.assign(n, 0.0), y_.assign(n, 0.0), d0_.assign(n, 0.0), rest_region_.assign(n, -1);
       lin_k_.assign(n, 0.0), lin_decay_.assign(n, 1.0), lin_gain_.assign(n, 0.0);
+      aff_k_.assign(n, 0.0), aff_limit2_.assign(n, 0.0), aff_decay_.assign(n, 1.0), aff_gain_.assign(n, 0.0);
+      aff_fgain_.assign(n, 0.0);
     }
     members_.clear();
     stale_ = listed;
@@ -174,6 +176,7 @@ void rename(std::vector<long>& list, const std::vector<std::uint32_t>& map) {
 
 void FluidField::particles_moved(const std::vector<std::uint32_t>& map) {
   for (auto* v : {&v_sub_, &phi_, &y_, &d0_, &lin_k_, &lin_decay_, &lin_gain_, &factor_}) permute(*v, map);
+  for (auto* v : {&aff_k_, &aff_limit2_, &aff_decay_, &aff_gain_, &aff_fgain_}) permute(*v, map);
   permute(region_of_, map);
   permute(rest_region_, map);
   rename(candidates_, map);
@@ -232,11 +235,27 @@ double linear_slope(const FluidRegion& reg, double radius) {
       reg.law);
 }
 
+// The law's affine branch for this sphere (laws' affine_part; none: k = 0). The yield_term switch shifts D by
+// a constant, so the slope and the branch are the same with it off.
+AffinePart affine_part(const FluidRegion& reg, double y, double radius) {
+  return std::visit(
+      [&](const auto& prm) {
+        using Law = typename std::decay_t<decltype(prm)>::Law;
+        const auto sphere = Law::sphere(prm, reg.curve, 2.0 * radius, y);
+        if constexpr (requires { Law::affine_part(sphere); })
+          return Law::affine_part(sphere);
+        else
+          return AffinePart{};
+      },
+      reg.law);
+}
+
 }  // namespace
 
 void FluidField::enter(const Particles& p, std::size_t a, int region) {
   const double r = p.radius[a], phi = phi_[a];
-  if (rest_region_[a] != region) {
+  const bool new_region = rest_region_[a] != region;
+  if (new_region) {
     const FluidRegion& reg = regions_[static_cast<std::size_t>(region)];
     y_[a] = yield_number(reg, p.mass[a], r, g_);
     d0_[a] = rest_drag(reg, y_[a], r);
@@ -249,6 +268,33 @@ void FluidField::enter(const Particles& p, std::size_t a, int region) {
     const LinearKick c = linear_kick(lin_k_[a], p.mass[a] / phi, 0.5 * dt_);
     lin_decay_[a] = c.decay, lin_gain_[a] = c.gain / phi;
   }
+  keep_affine(p, a, region, new_region);
+}
+
+// The affine branch of the sphere's law (once per stay in a region) and its kick factors for this phi (the
+// mass m / phi of kick_general's scaled equation, the World's half step).
+void FluidField::keep_affine(const Particles& p, std::size_t a, int region, bool new_region) {
+  if (new_region) {
+    const FluidRegion& reg = regions_[static_cast<std::size_t>(region)];
+    const AffinePart part = affine_part(reg, y_[a], p.radius[a]);
+    // The branch ends at s_max (the curve's Re' limit); kicks within 1e-6 of it take the general kernel, so
+    // rounding of s_max cannot put an evaluation of the iterations on the other branch.
+    const double lim = part.s_max * (1.0 - 1e-6);
+    aff_k_[a] = part.k, aff_limit2_[a] = lim * lim;
+  }
+  if (!(aff_k_[a] > 0.0)) return;
+  const double phi = phi_[a];
+  const LinearKick c = linear_kick(aff_k_[a], p.mass[a] / phi, 0.5 * dt_);
+  aff_decay_[a] = c.decay, aff_gain_[a] = c.gain, aff_fgain_[a] = c.gain / phi;
+}
+
+void FluidField::restored(const Particles& p) {
+  const std::size_t n = p.size();
+  aff_k_.assign(n, 0.0), aff_limit2_.assign(n, 0.0), aff_decay_.assign(n, 1.0), aff_gain_.assign(n, 0.0);
+  aff_fgain_.assign(n, 0.0);
+  if (rest_region_.size() != n) return;  // update() makes every constant anew
+  for (std::size_t a = 0; a < n; ++a)
+    if (rest_region_[a] >= 0) keep_affine(p, a, rest_region_[a], true);
 }
 
 Vec3 FluidField::kick_general(long a, const Vec3& v, const Vec3& F, double mass, double radius, double h,

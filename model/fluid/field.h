@@ -101,7 +101,11 @@ class FluidField {
     factor_.clear(), factored_.clear();  // indices changed: the clusters are recomputed at the next update
     phi_.clear(), y_.clear(), d0_.clear(), rest_region_.clear(), clustered_members_.clear();
     lin_k_.clear(), lin_decay_.clear(), lin_gain_.clear();
+    aff_k_.clear(), aff_limit2_.clear(), aff_decay_.clear(), aff_gain_.clear(), aff_fgain_.clear();
   }
+  // A checkpoint was restored (model/checkpoint.cpp keeps what the kick needs but not the affine factors,
+  // which follow from it): they are made anew for the particles inside a region, the same values.
+  void restored(const Particles& p);
   // The World permuted the particles (its spatial sort at a pair-list rebuild; map: old -> new dense index, a
   // permutation): every per-particle array moves with its particle and the index lists are renamed and kept
   // ascending, so each particle keeps its region, its constants and its cluster factor (the same kicks as
@@ -119,6 +123,17 @@ class FluidField {
       const double rho_b = buoyant_density_[static_cast<std::size_t>(region_of_[i])];  // 0: buoyancy off
       const Vec3 force = rho_b > 0.0 ? F - g * (rho_b * v_sub_[i]) : F;
       return v * lin_decay_[i] + force * lin_gain_[i];
+    }
+    // A law on its affine branch (Bingham on the Stokes / published curve's Cd = 24/Re'), the usual case in a
+    // paste: its kept factors (drag_kick.h affine_kick), the general kick where the speed leaves the branch.
+    if (aff_k_[i] > 0.0 && h == 0.5 * dt_ && g.x == g_.x && g.y == g_.y && g.z == g_.z) {
+      const double rho_b = buoyant_density_[static_cast<std::size_t>(region_of_[i])];
+      const Vec3 force = rho_b > 0.0 ? F - g * (rho_b * v_sub_[i]) : F;
+      const LinearKick c{aff_decay_[i], aff_gain_[i]};
+      Vec out;
+      if (affine_kick(c, aff_fgain_[i], d0_[i] * yield_factor(a), aff_limit2_[i], Vec{v.x, v.y, v.z},
+                      Vec{force.x, force.y, force.z}, out))
+        return {out[0], out[1], out[2]};
     }
     return kick_general(a, v, F, mass, radius, h, g);
   }
@@ -164,9 +179,14 @@ class FluidField {
     // constants are made once per stay in a region; one at the surface gets its linear factors each step.
     const bool moved = phi != phi_[a];
     phi_[a] = phi;
-    if (rest_region_[a] != region || (moved && lin_k_[a] > 0.0)) enter(p, a, region);
+    if (rest_region_[a] != region || (moved && (lin_k_[a] > 0.0 || aff_k_[a] > 0.0))) enter(p, a, region);
   }
+  // A law with an affine branch (laws' affine_part, D = D(0+) + k s below s_max): k (N s/m, 0: none), s_max^2
+  // less a margin (m2/s2), and for this step's phi and the half step dt_/2 the kick's factors (drag_kick.h
+  // affine_kick: decay -, gain s/kg, f_gain = gain / phi s/kg). Not in the checkpoint: restored() remakes them.
+  std::vector<double> aff_k_, aff_limit2_, aff_decay_, aff_gain_, aff_fgain_;
   void enter(const Particles& p, std::size_t a, int region);  // the constants of keep_sphere
+  void keep_affine(const Particles& p, std::size_t a, int region, bool new_region);  // enter()'s aff_ part
   std::vector<double> buoyant_density_;  // kg/m3 per region, 0 where buoyancy is off (the inline kick)
   Vec3 kick_general(long a, const Vec3& v, const Vec3& F, double mass, double radius, double h, const Vec3& g) const;
   // Clusters are recomputed only when their input changed: the members, their positions, the surfaces or
