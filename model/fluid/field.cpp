@@ -51,7 +51,7 @@ void FluidField::refresh(const Particles& p) {
 }
 
 void FluidField::update(const Particles& p, const std::vector<std::uint32_t>* pair_i,
-                        const std::vector<std::uint32_t>* pair_j) {
+                        const std::vector<std::uint32_t>* pair_j, int threads) {
   const std::size_t n = p.size();
   const bool listed = margin_ > 0.0;
   if (!listed || region_of_.size() != n) {  // every flag anew (no list, or particles were added)
@@ -102,7 +102,7 @@ void FluidField::update(const Particles& p, const std::vector<std::uint32_t>* pa
   if (cluster_interval_ == INFINITY) return;
   if (factor_.size() != n) factor_.assign(n, 1.0), factored_.clear(), since_clusters_ = 0;
   const long every = dt_ > 0.0 ? std::max(1L, std::lround(cluster_interval_ / dt_)) : 1L;
-  if (since_clusters_ % every == 0 && !clusters_unchanged(p)) update_clusters(p, pair_i, pair_j);
+  if (since_clusters_ % every == 0 && !clusters_unchanged(p)) update_clusters(p, pair_i, pair_j, threads);
   ++since_clusters_;
 }
 
@@ -117,42 +117,68 @@ bool FluidField::clusters_unchanged(const Particles& p) const {
   return true;
 }
 
+CollectiveInput FluidField::region_input(const Particles& p, std::size_t k, const std::vector<std::uint32_t>* pair_i,
+                                         const std::vector<std::uint32_t>* pair_j) {
+  region_members_.clear();
+  region_d0_.clear();
+  auto take = [&](long a) {
+    const std::size_t i = static_cast<std::size_t>(a);
+    if (region_of_[i] != static_cast<int>(k)) return;
+    region_members_.push_back(a);
+    region_d0_.push_back(phi_[i] * d0_[i]);  // phi D(0+) (keep_sphere: this region, gravity g_)
+  };
+  if (margin_ > 0.0)
+    for (long a : members_) take(a);  // ascending (the candidates' order)
+  else
+    for (std::size_t a = 0; a < p.size(); ++a) take(static_cast<long>(a));
+  return {&p, &region_members_, &region_d0_, pair_i, pair_j, surface_[k], regions_[k].yield_stress()};
+}
+
+void FluidField::apply_factors(const ClusterStats& s) {
+  for (std::size_t q = 0; q < region_members_.size(); ++q) {
+    if (region_factor_[q] == 1.0) continue;
+    factor_[static_cast<std::size_t>(region_members_[q])] = region_factor_[q];
+    factored_.push_back(region_members_[q]);
+  }
+  stats_.clusters += s.clusters;
+  stats_.largest = std::max(stats_.largest, s.largest);
+  stats_.min_factor = std::min(stats_.min_factor, s.min_factor);
+}
+
+void FluidField::clustered(const Particles& p) {
+  clustered_version_ = pairs_version_, clustered_members_ = members_, clustered_surface_ = surface_;
+  clustered_x_.resize(members_.size());
+  for (std::size_t q = 0; q < members_.size(); ++q) clustered_x_[q] = p.x[static_cast<std::size_t>(members_[q])];
+}
+
 void FluidField::update_clusters(const Particles& p, const std::vector<std::uint32_t>* pair_i,
-                                 const std::vector<std::uint32_t>* pair_j) {
+                                 const std::vector<std::uint32_t>* pair_j, int threads) {
   if (!pair_i || !pair_j) throw std::logic_error("FluidField: a collective region needs the pair list in update()");
   for (long a : factored_) factor_[static_cast<std::size_t>(a)] = 1.0;
   factored_.clear();
   stats_ = ClusterStats{};
-  const bool listed = margin_ > 0.0;
+  long collective = 0;
+  for (const FluidRegion& reg : regions_) collective += reg.collective ? 1 : 0;
   for (std::size_t k = 0; k < regions_.size(); ++k) {
-    const FluidRegion& reg = regions_[k];
-    if (!reg.collective) continue;
-    region_members_.clear();
-    region_d0_.clear();
-    auto take = [&](long a) {
-      const std::size_t i = static_cast<std::size_t>(a);
-      if (region_of_[i] != static_cast<int>(k)) return;
-      region_members_.push_back(a);
-      region_d0_.push_back(phi_[i] * d0_[i]);  // phi D(0+) (keep_sphere: this region, gravity g_)
-    };
-    if (listed)
-      for (long a : members_) take(a);  // ascending (the candidates' order)
-    else
-      for (std::size_t a = 0; a < p.size(); ++a) take(static_cast<long>(a));
-    const CollectiveInput in{&p, &region_members_, &region_d0_, pair_i, pair_j, surface_[k], reg.yield_stress()};
-    const ClusterStats s = collective_.factors(in, region_factor_);
-    for (std::size_t q = 0; q < region_members_.size(); ++q) {
-      if (region_factor_[q] == 1.0) continue;
-      factor_[static_cast<std::size_t>(region_members_[q])] = region_factor_[q];
-      factored_.push_back(region_members_[q]);
+    if (!regions_[k].collective) continue;
+    const CollectiveInput in = region_input(p, k, pair_i, pair_j);
+    if (threads > 1 && collective == 1) {  // the team measures the footprints (finish_clusters() ends it)
+      collective_.begin(in, threads);
+      pending_region_ = static_cast<int>(k), pending_pi_ = pair_i, pending_pj_ = pair_j;
+      return;
     }
-    stats_.clusters += s.clusters;
-    stats_.largest = std::max(stats_.largest, s.largest);
-    stats_.min_factor = std::min(stats_.min_factor, s.min_factor);
+    apply_factors(collective_.factors(in, region_factor_));
   }
-  clustered_version_ = pairs_version_, clustered_members_ = members_, clustered_surface_ = surface_;
-  clustered_x_.resize(members_.size());
-  for (std::size_t q = 0; q < members_.size(); ++q) clustered_x_[q] = p.x[static_cast<std::size_t>(members_[q])];
+  clustered(p);
+}
+
+void FluidField::finish_clusters(const Particles& p) {
+  const std::size_t k = static_cast<std::size_t>(pending_region_);
+  const CollectiveInput in{&p, &region_members_, &region_d0_, pending_pi_, pending_pj_, surface_[k],
+                           regions_[k].yield_stress()};
+  apply_factors(collective_.finish(in, region_factor_));
+  pending_region_ = -1;
+  clustered(p);
 }
 
 namespace {

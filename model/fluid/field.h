@@ -83,8 +83,15 @@ class FluidField {
   // Region membership and submerged volumes at the current positions; then the surfaces rise. With a
   // collective region, also its clusters every collective_interval: they need the candidate pairs (dense
   // indices, any superset of the touching pairs: the World's pair list).
+  // With threads > 1 (the World's fluid pass, called by one thread of a team of that many), a cluster update
+  // of a single collective region stops before the footprints and clusters_pending() says so: then every
+  // thread t of the team calls footprints(t), and after a barrier one thread calls finish_clusters(p): the
+  // same bits as threads = 1 (collective.h CollectiveYield::begin / footprints / finish).
   void update(const Particles& p, const std::vector<std::uint32_t>* pair_i = nullptr,
-              const std::vector<std::uint32_t>* pair_j = nullptr);
+              const std::vector<std::uint32_t>* pair_j = nullptr, int threads = 1);
+  bool clusters_pending() const { return pending_region_ >= 0; }
+  void footprints(int thread) { collective_.footprints(thread); }
+  void finish_clusters(const Particles& p);
   // The step (s) and gravity (m/s2) of the World: set before the first update() when a region is collective.
   void set_step(double dt, const Vec3& g) {
     if (dt != dt_ || g.x != g_.x || g.y != g_.y || g.z != g_.z) rest_region_.assign(rest_region_.size(), -1);  // kept for the old ones
@@ -210,7 +217,15 @@ class FluidField {
   std::vector<long> region_members_;
   std::vector<double> region_d0_, region_factor_;
   void update_clusters(const Particles& p, const std::vector<std::uint32_t>* pair_i,
-                       const std::vector<std::uint32_t>* pair_j);
+                       const std::vector<std::uint32_t>* pair_j, int threads);
+  // The cluster update of region k: its members and their phi D(0+) into region_members_ / region_d0_.
+  CollectiveInput region_input(const Particles& p, std::size_t k, const std::vector<std::uint32_t>* pair_i,
+                               const std::vector<std::uint32_t>* pair_j);
+  void apply_factors(const ClusterStats& s);  // region_factor_ onto factor_, the stats summed
+  void clustered(const Particles& p);         // what clusters_unchanged() compares next time
+  int pending_region_ = -1;                   // the region whose footprints are being measured, -1: none
+  const std::vector<std::uint32_t>* pending_pi_ = nullptr;
+  const std::vector<std::uint32_t>* pending_pj_ = nullptr;
 };
 
 }  // namespace pastemix::model::fluid
