@@ -20,6 +20,10 @@
 // A linear law without a rest part (laws' linear_slope: Newtonian with the Stokes curve) takes that kernel's
 // closed form instead (drag_kick.h linear_kick: what its iterations converge to, ~1e-13 m/s from them), with
 // its two factors kept per sphere, so its kick is three multiply-adds per component (issue 19).
+// A law with an affine branch (laws' affine_part: Bingham on the Stokes or the published curve, whose
+// Cd = 24/Re' makes D = D(0+) + 3 pi eta_B d s below the speed where Re' = 1) takes the closed form of that
+// kernel there (drag_kick.h affine_kick: its factors kept per sphere, no iteration, no exp), and the
+// iterations above it; the two agree within 1e-12 m/s + 1e-11 |v| (tests/model/fluid/drag_kick_test.cpp).
 // No fluid torque is applied (the spin is untouched by the fluid: a stated simplification).
 // With collective = "bearing_capacity" the rest part D(0+) of a sphere in a cluster of touching submerged
 // spheres is multiplied by its cluster factor (collective.h: shadowing, footing capacity), recomputed every
