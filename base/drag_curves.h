@@ -138,6 +138,24 @@ T drag_coefficient(CurveId id, const T* c, const T& re, double y) {
   return T(0.0);
 }
 
+// The curve's viscous branch: Cd = c / Re' for Re' < re_max (c = 0: the curve has none). There Dedegil's
+// drag (4.9) is affine in the speed, D = (pi d / 2)^2 tau_y + (c/2) (tau_y + eta_B v / d) pi d^2 / 4, which
+// the engine's kick integrates in closed form (model/laws/bingham_dedegil.h affine_part).
+struct ViscousBranch {
+  double c = 0.0;       // -, Cd Re' on the branch
+  double re_max = 0.0;  // -, the branch holds for Re' < re_max (inf: for every Re')
+};
+inline ViscousBranch viscous_branch(CurveId id) {
+  switch (id) {
+    case CurveId::stokes:
+      return {24.0, INFINITY};
+    case CurveId::published_4_19:
+      return {24.0, 1.0};  // drag_coefficient: re < 1
+    default:
+      return {};  // the fitted families: k/Re' plus a Re'^-b term (and c): taken as not affine
+  }
+}
+
 // Modified particle Reynolds number (4.18); SI units, eta_B > 0.
 template <typename T>
 T bingham_reynolds(double rho_f, const T& v, double tau_y, double eta_B, double d) {

@@ -139,6 +139,7 @@ struct CheckpointAccess {
     w.pairs_.threads = 0;
     w.pairs_.partition(w.threads_for(static_cast<long>(w.p_.size())), w.x_at_rebuild_);
     w.bad_index_ = -1;
+    if (auto& field = std::get<FluidForces>(w.forces_).field) field->restored(w.p_);
   }
   static H5Writer& h5(RunOutput& o) { return *o.h5_; }
   static void replace_h5(RunOutput& o, std::unique_ptr<H5Writer> h5) {

@@ -14,58 +14,80 @@ double skempton_nc(double breadth, double embedment) {
   return std::min(9.0, 6.0 * (1.0 + 0.2 * std::max(0.0, embedment) / breadth));
 }
 
-double disc_union_area(const std::vector<double>& cx, const std::vector<double>& cy, const std::vector<double>& r,
-                       double h) {
-  const std::size_t n = cx.size();
-  if (n == 0) return 0.0;
+namespace {
+
+// The strips of disc_union_area over a set of discs: the lowest y (m), the strips' width (m), their count
+// (0: nothing to cover).
+struct StripLayout {
+  double y_lo = 0.0, step = 0.0;
+  long rows = 0;
+};
+
+StripLayout strip_layout(const double* cy, const double* r, std::size_t n, double h) {
+  if (n == 0) return {};
   double y_lo = cy[0] - r[0], y_hi = cy[0] + r[0];
   for (std::size_t k = 1; k < n; ++k) y_lo = std::min(y_lo, cy[k] - r[k]), y_hi = std::max(y_hi, cy[k] + r[k]);
   // At most 4000 lines: the rows' cost stays bounded for a wide PSD (a 50 mm rock beside 1 mm fines).
   const double span = y_hi - y_lo;
-  if (!(span > 0.0)) return 0.0;
+  if (!(span > 0.0)) return {};
   const long rows = std::max(1L, std::min(4000L, static_cast<long>(std::ceil(span / h))));
-  const double step = span / static_cast<double>(rows);
+  return {y_lo, span / static_cast<double>(rows), rows};
+}
+
+// The covered lengths (m) of strips [row0, row1) of layout s, each strip's merged segments in order, appended
+// to `out`: disc_union_area's length is their sum in this order (strips of different callers, taken in
+// ascending row order, give the same sum to the bit).
+void strip_lengths(const double* cx, const double* cy, const double* r, std::size_t n, const StripLayout& s,
+                   long row0, long row1, std::vector<double>& out) {
+  if (row1 <= row0) return;
+  const double y_lo = s.y_lo, step = s.step;
   // Per strip a disc crosses: the interval centred on the disc whose length is the disc's mean chord over
   // the strip (its exact area in the strip / the strip's width). So a disc alone has its exact area; where
   // two discs share a strip (overlapping, or one above the other within a strip's width) their intervals are
   // merged, an error of order (h / r) of the shared strips' area. Intervals are bucketed by strip (counting
   // sort), then sorted by start within each strip.
-  auto primitive = [](double t, double r) {  // integral of 2 sqrt(r^2 - y^2) dy from 0 to t, |t| <= r
-    return t * std::sqrt(std::max(0.0, r * r - t * t)) + r * r * std::asin(std::clamp(t / r, -1.0, 1.0));
+  auto primitive = [](double t, double rad) {  // integral of 2 sqrt(rad^2 - y^2) dy from 0 to t, |t| <= rad
+    return t * std::sqrt(std::max(0.0, rad * rad - t * t)) + rad * rad * std::asin(std::clamp(t / rad, -1.0, 1.0));
   };
-  auto strips = [&](std::size_t k, long& lo, long& hi) {
-    lo = std::max(0L, static_cast<long>(std::floor((cy[k] - r[k] - y_lo) / step)));
-    hi = std::min(rows - 1, static_cast<long>(std::floor((cy[k] + r[k] - y_lo) / step)));
+  auto strips = [&](std::size_t k, long& lo, long& hi) {  // the disc's strips, within [row0, row1)
+    lo = std::max(row0, static_cast<long>(std::floor((cy[k] - r[k] - y_lo) / step)));
+    hi = std::min(row1 - 1, static_cast<long>(std::floor((cy[k] + r[k] - y_lo) / step)));
   };
-  // Half the mean chord of disc k over strip `row`; false where the disc does not reach into the strip.
-  auto half_chord = [&](std::size_t k, long row, double& half) {
-    const double ya = std::max(y_lo + static_cast<double>(row) * step - cy[k], -r[k]);
-    const double yb = std::min(y_lo + static_cast<double>(row + 1) * step - cy[k], r[k]);
-    if (yb <= ya) return false;
-    half = 0.5 * (primitive(yb, r[k]) - primitive(ya, r[k])) / step;
-    return true;
+  // Disc k's extent in strip `row`, relative to its centre: [lower, upper] (empty where upper <= lower).
+  auto extent = [&](std::size_t k, long row, double& lower, double& upper) {
+    lower = std::max(y_lo + static_cast<double>(row) * step - cy[k], -r[k]);
+    upper = std::min(y_lo + static_cast<double>(row + 1) * step - cy[k], r[k]);
+    return upper > lower;
   };
-  std::vector<std::size_t> start(static_cast<std::size_t>(rows) + 1, 0);
-  double half = 0.0;
+  const std::size_t nrows = static_cast<std::size_t>(row1 - row0);
+  std::vector<std::size_t> start(nrows + 1, 0);
+  double ya = 0.0, yb = 0.0;
   for (std::size_t k = 0; k < n; ++k) {
     if (!(r[k] > 0.0)) continue;
     long lo = 0, hi = 0;
     strips(k, lo, hi);
     for (long row = lo; row <= hi; ++row)
-      if (half_chord(k, row, half)) ++start[static_cast<std::size_t>(row) + 1];
+      if (extent(k, row, ya, yb)) ++start[static_cast<std::size_t>(row - row0) + 1];
   }
-  for (std::size_t i = 0; i < static_cast<std::size_t>(rows); ++i) start[i + 1] += start[i];
+  for (std::size_t i = 0; i < nrows; ++i) start[i + 1] += start[i];
   std::vector<std::pair<double, double>> iv(start.back(), {0.0, 0.0});
   std::vector<std::size_t> fill(start.begin(), start.end() - 1);
   for (std::size_t k = 0; k < n; ++k) {
     if (!(r[k] > 0.0)) continue;
     long lo = 0, hi = 0;
     strips(k, lo, hi);
-    for (long row = lo; row <= hi; ++row)
-      if (half_chord(k, row, half)) iv[fill[static_cast<std::size_t>(row)]++] = {cx[k] - half, cx[k] + half};
+    // Half the mean chord over each strip the disc crosses. Neighbouring strips share a boundary (the same
+    // expression of the same row number, so the same double): its primitive is evaluated once.
+    double at = NAN, prim = 0.0;
+    for (long row = lo; row <= hi; ++row) {
+      if (!extent(k, row, ya, yb)) continue;
+      const double below = ya == at ? prim : primitive(ya, r[k]);
+      prim = primitive(yb, r[k]), at = yb;
+      const double half = 0.5 * (prim - below) / step;
+      iv[fill[static_cast<std::size_t>(row - row0)]++] = {cx[k] - half, cx[k] + half};
+    }
   }
-  double length = 0.0;
-  for (std::size_t row = 0; row < static_cast<std::size_t>(rows); ++row) {
+  for (std::size_t row = 0; row < nrows; ++row) {
     const auto first = iv.begin() + static_cast<std::ptrdiff_t>(start[row]);
     const auto last = iv.begin() + static_cast<std::ptrdiff_t>(start[row + 1]);
     if (first == last) continue;
@@ -73,14 +95,25 @@ double disc_union_area(const std::vector<double>& cx, const std::vector<double>&
     double a = first->first, b = first->second;
     for (auto it = first + 1; it != last; ++it) {
       if (it->first > b) {
-        length += b - a;
+        out.push_back(b - a);
         a = it->first;
       }
       b = std::max(b, it->second);
     }
-    length += b - a;
+    out.push_back(b - a);
   }
-  return length * step;
+}
+
+}  // namespace
+
+double disc_union_area(const std::vector<double>& cx, const std::vector<double>& cy, const std::vector<double>& r,
+                       double h) {
+  const StripLayout s = strip_layout(cy.data(), r.data(), cx.size(), h);
+  std::vector<double> seg;
+  strip_lengths(cx.data(), cy.data(), r.data(), cx.size(), s, 0, s.rows, seg);
+  double length = 0.0;
+  for (double x : seg) length += x;
+  return length * s.step;
 }
 
 double lens_area(double r1, double r2, double c) {
@@ -102,12 +135,21 @@ long CollectiveYield::find(long k) {
 }
 
 ClusterStats CollectiveYield::factors(const CollectiveInput& in, std::vector<double>& factor) {
+  begin(in, 1);
+  footprints(0);
+  return finish(in, factor);
+}
+
+void CollectiveYield::begin(const CollectiveInput& in, int parts) {
   const Particles& p = *in.particles;
   const std::vector<long>& m = *in.members;
   const std::size_t nm = m.size();
-  factor.assign(nm, 1.0);
-  ClusterStats stats;
-  if (nm < 2 || in.yield_stress <= 0.0) return stats;
+  stats_ = ClusterStats{};
+  pending_.clear(), cx_.clear(), cy_.clear(), cr_.clear();
+  parts_ = std::clamp(parts, 1, kMaxParts);
+  for (auto& s : seg_) s.clear();
+  seg_start_.assign(static_cast<std::size_t>(parts_), {});
+  if (nm < 2 || in.yield_stress <= 0.0) return;
 
   slot_.assign(p.size(), -1);
   parent_.resize(nm);
@@ -143,42 +185,82 @@ ClusterStats CollectiveYield::factors(const CollectiveInput& in, std::vector<dou
   for (std::size_t root = 0; root < nm; ++root) {
     const long b = start_[root], e = start_[root + 1];
     if (e - b < 2) continue;
-    ++stats.clusters;
-    stats.largest = std::max(stats.largest, e - b);
-    double sum = 0.0, sum_all = 0.0, strongest = 0.0, lowest = INFINITY, r_min = INFINITY;
-    cx_.clear(), cy_.clear(), cr_.clear();
+    ++stats_.clusters;
+    stats_.largest = std::max(stats_.largest, e - b);
+    Pending c{b, e};
+    c.disc0 = cx_.size();
     for (long q = b; q < e; ++q) {
       const long k = order_[static_cast<std::size_t>(q)];
       const std::size_t a = static_cast<std::size_t>(m[static_cast<std::size_t>(k)]);
       const double exposed = std::max(0.0, 1.0 - cover_[static_cast<std::size_t>(k)] / (kPi * p.radius[a] * p.radius[a]));
       cover_[static_cast<std::size_t>(k)] = exposed;  // from here on: the exposed fraction
-      sum += exposed * d0[static_cast<std::size_t>(k)];
-      sum_all += d0[static_cast<std::size_t>(k)];
-      strongest = std::max(strongest, exposed * d0[static_cast<std::size_t>(k)]);
+      c.sum += exposed * d0[static_cast<std::size_t>(k)];
+      c.sum_all += d0[static_cast<std::size_t>(k)];
+      c.strongest = std::max(c.strongest, exposed * d0[static_cast<std::size_t>(k)]);
       const double r = p.radius[a], z = p.x[a].z;
-      lowest = std::min(lowest, z - r);
-      r_min = std::min(r_min, r);
+      c.lowest = std::min(c.lowest, z - r);
+      c.r_min = std::min(c.r_min, r);
       // Horizontal section of the wetted part: the full disc once the centre is submerged, else the cap's base.
       const double above = z - in.surface;
       const double rw = above <= 0.0 ? r : std::sqrt(std::max(0.0, r * r - above * above));
       cx_.push_back(p.x[a].x), cy_.push_back(p.x[a].y), cr_.push_back(rw);
     }
-    if (!(sum > 0.0)) continue;
+    if (!(c.sum > 0.0)) {
+      cx_.resize(c.disc0), cy_.resize(c.disc0), cr_.resize(c.disc0);
+      continue;
+    }
+    c.disc1 = cx_.size();
     // Strips r_min / 16 wide: the footprint's area to ~0.2 % (tested), far below the spread of N_c (5.14-6).
-    const double area = disc_union_area(cx_, cy_, cr_, r_min / 16.0);
+    const StripLayout s = strip_layout(cy_.data() + c.disc0, cr_.data() + c.disc0, c.disc1 - c.disc0, c.r_min / 16.0);
+    c.y_lo = s.y_lo, c.step = s.step, c.rows = s.rows;
+    pending_.push_back(c);
+  }
+}
+
+void CollectiveYield::footprints(int part) {
+  if (part < 0 || part >= parts_) return;  // more threads than parts: nothing left for this one
+  const std::size_t t = static_cast<std::size_t>(part);
+  auto& seg = seg_[t];
+  auto& at = seg_start_[t];
+  at.assign(pending_.size() + 1, 0);
+  for (std::size_t q = 0; q < pending_.size(); ++q) {
+    const Pending& c = pending_[q];
+    at[q] = seg.size();
+    // This part's strips: an equal share of the rows, in ascending order of the parts.
+    const long row0 = c.rows * part / parts_, row1 = c.rows * (part + 1) / parts_;
+    const StripLayout s{c.y_lo, c.step, c.rows};
+    strip_lengths(cx_.data() + c.disc0, cy_.data() + c.disc0, cr_.data() + c.disc0, c.disc1 - c.disc0, s, row0,
+                  row1, seg);
+  }
+  at[pending_.size()] = seg.size();
+}
+
+ClusterStats CollectiveYield::finish(const CollectiveInput& in, std::vector<double>& factor) {
+  factor.assign(in.members->size(), 1.0);
+  ClusterStats stats = stats_;
+  for (std::size_t q = 0; q < pending_.size(); ++q) {
+    const Pending& c = pending_[q];
+    // The covered length over the strips in ascending row order (parts in order): disc_union_area's sum.
+    double length = 0.0;
+    for (int t = 0; t < parts_; ++t) {
+      const auto& at = seg_start_[static_cast<std::size_t>(t)];
+      const auto& seg = seg_[static_cast<std::size_t>(t)];
+      for (std::size_t x = at[q]; x < at[q + 1]; ++x) length += seg[x];
+    }
+    const double area = length * c.step;
     const double breadth = std::sqrt(4.0 * area / kPi);
-    const double embed = std::max(0.0, in.surface - lowest);
+    const double embed = std::max(0.0, in.surface - c.lowest);
     // End bearing: the exposed underside pushing through (sum), at most the footing's; plus the side shear.
-    const double end = std::min(sum, in.yield_stress * skempton_nc(breadth, embed) * area);
+    const double end = std::min(c.sum, in.yield_stress * skempton_nc(breadth, embed) * area);
     const double side = in.yield_stress * kPi * breadth * embed;
     // At most what the spheres would resist each on its own (that mechanism is always possible), and at
     // least the most exposed sphere alone.
-    const double resist = std::max(strongest, std::min(sum_all, end + side));
-    const double f = resist / sum;
-    for (long q = b; q < e; ++q) {
-      const std::size_t k = static_cast<std::size_t>(order_[static_cast<std::size_t>(q)]);
-      factor[k] = cover_[k] * f;
-      stats.min_factor = std::min(stats.min_factor, factor[k]);
+    const double resist = std::max(c.strongest, std::min(c.sum_all, end + side));
+    const double f = resist / c.sum;
+    for (long k = c.b; k < c.e; ++k) {
+      const std::size_t i = static_cast<std::size_t>(order_[static_cast<std::size_t>(k)]);
+      factor[i] = cover_[i] * f;
+      stats.min_factor = std::min(stats.min_factor, factor[i]);
     }
   }
   return stats;

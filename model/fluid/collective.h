@@ -42,6 +42,8 @@
 // the paste keeps factor 1 (its own law).
 #pragma once
 
+#include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -84,13 +86,35 @@ struct ClusterStats {
 // factor[k] for members[k] (resized); scratch vectors kept by the caller between calls.
 class CollectiveYield {
  public:
+  static constexpr int kMaxParts = 64;
   ClusterStats factors(const CollectiveInput& in, std::vector<double>& factor);
+  // The same in three parts, so that threads share the footprints (the costly part: strips of r_min / 16):
+  // begin(in, parts) on one thread; then footprints(t) for t = 0 .. parts - 1, each on any thread (part t
+  // takes the t-th share of every cluster's strips); then finish(in, factor) on one thread. The footprints'
+  // lengths are summed in strip order whatever the parts, so every parts count gives the same bits.
+  void begin(const CollectiveInput& in, int parts);
+  void footprints(int part);
+  ClusterStats finish(const CollectiveInput& in, std::vector<double>& factor);
 
  private:
   std::vector<long> parent_, slot_;  // union-find over members; slot_[a]: member index of particle a or -1
   std::vector<long> order_, start_;  // members grouped by cluster root
-  std::vector<double> cx_, cy_, cr_;
+  std::vector<double> cx_, cy_, cr_;  // the wetted discs of the clusters in pending_, one run per cluster
   std::vector<double> cover_;  // per member: area shadowed by lower touching members (m2), then the exposed fraction
+  // A cluster whose footprint is to be measured: its members order_[b, e), the sums of begin() (N, m) and its
+  // discs [disc0, disc1) with their strips (disc_union_area's layout).
+  struct Pending {
+    long b = 0, e = 0;
+    double sum = 0.0, sum_all = 0.0, strongest = 0.0, lowest = INFINITY, r_min = INFINITY;
+    std::size_t disc0 = 0, disc1 = 0;
+    double y_lo = 0.0, step = 0.0;
+    long rows = 0;
+  };
+  std::vector<Pending> pending_;
+  ClusterStats stats_;
+  int parts_ = 1;
+  std::array<std::vector<double>, kMaxParts> seg_;  // per part: the covered length of each strip's segments (m)
+  std::vector<std::vector<std::size_t>> seg_start_;  // per part: where each pending cluster's lengths start
   long find(long k);
 };
 

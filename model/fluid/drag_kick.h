@@ -39,6 +39,17 @@ inline constexpr double kRestSpeed = 1e-12;  // m/s
 using Vec = std::array<double, 3>;
 
 // One kick of length h (s): v (m/s) under non-drag force F (N) on mass m (kg) plus drag with the given split.
+// The kick's last part: out = v decay + F gain (the linear part, integrated exactly), then the rest drag d0
+// removes at most d0 gain of speed, along the motion, never reversing it. `speed2` is |v decay + F gain|^2.
+inline Vec remove_rest(Vec out, double speed2, double d0, double gain) {
+  const double speed = std::sqrt(speed2);
+  const double removable = d0 * gain;
+  if (speed <= removable) return Vec{0.0, 0.0, 0.0};
+  const double scale = (speed - removable) / speed;
+  for (double& c : out) c *= scale;
+  return out;
+}
+
 inline Vec drag_kick(const Vec& v, const Vec& F, double m, double h, const DragSplit& split) {
   Vec out{};
   const double a = split.k * h / m;  // dimensionless damping of the kick
@@ -47,13 +58,7 @@ inline Vec drag_kick(const Vec& v, const Vec& F, double m, double h, const DragS
   const double phi = a > 1e-12 ? one_minus / split.k : h / m;
   const double decay = std::exp(-a);
   for (int c = 0; c < 3; ++c) out[c] = v[c] * decay + F[c] * phi;
-  // The rest-drag D0 removes at most D0 * phi of speed, along the motion, never reversing it.
-  const double speed = std::sqrt(out[0] * out[0] + out[1] * out[1] + out[2] * out[2]);
-  const double removable = split.d0 * phi;
-  if (speed <= removable) return Vec{0.0, 0.0, 0.0};
-  const double scale = (speed - removable) / speed;
-  for (double& c : out) c *= scale;
-  return out;
+  return remove_rest(out, out[0] * out[0] + out[1] * out[1] + out[2] * out[2], split.d0, phi);
 }
 
 // The kick of a linear drag D(s) = k s without a rest part (a Newtonian fluid with the Stokes curve,
@@ -72,6 +77,24 @@ inline LinearKick linear_kick(double k, double m, double h) {
 }
 inline Vec apply(const LinearKick& c, const Vec& v, const Vec& F) {
   return {v[0] * c.decay + F[0] * c.gain, v[1] * c.decay + F[1] * c.gain, v[2] * c.decay + F[2] * c.gain};
+}
+
+// The kick of an affine drag D(s) = d0 + k s (laws' affine_part: a Bingham sphere on its curve's viscous
+// branch, speeds below s_max): with k constant, drag_kick with the split {held, k} is what
+// drag_kick_implicit's iterations converge to, and its factors depend only on the sphere and h, so
+// FluidField keeps them per sphere (c = linear_kick(k, m, h); f_gain = c.gain / phi folds the scaled force
+// F / phi in). No transcendental function and no evaluation of D per kick. Valid while the speed stays
+// below s_max over the kick: the caller checks |v| and |v decay + F f_gain| against it (`limit2`, m2/s2)
+// and takes drag_kick_implicit otherwise (returns false then). Tested against drag_kick_implicit in
+// tests/model/fluid/drag_kick_test.cpp (the slope there is a difference quotient: ~1e-12 relative apart).
+inline bool affine_kick(const LinearKick& c, double f_gain, double held, double limit2, const Vec& v, const Vec& F,
+                        Vec& out) {
+  if (!(v[0] * v[0] + v[1] * v[1] + v[2] * v[2] < limit2)) return false;
+  for (int k = 0; k < 3; ++k) out[k] = v[k] * c.decay + F[k] * f_gain;
+  const double speed2 = out[0] * out[0] + out[1] * out[1] + out[2] * out[2];
+  if (!(speed2 < limit2)) return false;
+  out = remove_rest(out, speed2, held, c.gain);
+  return true;
 }
 
 // The implicit kick: the one FluidField::kick runs and the tests test. `magnitude` is the drag D(s) (N) of

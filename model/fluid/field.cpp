@@ -51,7 +51,7 @@ void FluidField::refresh(const Particles& p) {
 }
 
 void FluidField::update(const Particles& p, const std::vector<std::uint32_t>* pair_i,
-                        const std::vector<std::uint32_t>* pair_j) {
+                        const std::vector<std::uint32_t>* pair_j, int threads) {
   const std::size_t n = p.size();
   const bool listed = margin_ > 0.0;
   if (!listed || region_of_.size() != n) {  // every flag anew (no list, or particles were added)
@@ -60,6 +60,8 @@ void FluidField::update(const Particles& p, const std::vector<std::uint32_t>* pa
     if (rest_region_.size() != n) {
       phi_.assign(n, 0.0), y_.assign(n, 0.0), d0_.assign(n, 0.0), rest_region_.assign(n, -1);
       lin_k_.assign(n, 0.0), lin_decay_.assign(n, 1.0), lin_gain_.assign(n, 0.0);
+      aff_k_.assign(n, 0.0), aff_limit2_.assign(n, 0.0), aff_decay_.assign(n, 1.0), aff_gain_.assign(n, 0.0);
+      aff_fgain_.assign(n, 0.0);
     }
     members_.clear();
     stale_ = listed;
@@ -100,7 +102,7 @@ void FluidField::update(const Particles& p, const std::vector<std::uint32_t>* pa
   if (cluster_interval_ == INFINITY) return;
   if (factor_.size() != n) factor_.assign(n, 1.0), factored_.clear(), since_clusters_ = 0;
   const long every = dt_ > 0.0 ? std::max(1L, std::lround(cluster_interval_ / dt_)) : 1L;
-  if (since_clusters_ % every == 0 && !clusters_unchanged(p)) update_clusters(p, pair_i, pair_j);
+  if (since_clusters_ % every == 0 && !clusters_unchanged(p)) update_clusters(p, pair_i, pair_j, threads);
   ++since_clusters_;
 }
 
@@ -115,42 +117,68 @@ bool FluidField::clusters_unchanged(const Particles& p) const {
   return true;
 }
 
+CollectiveInput FluidField::region_input(const Particles& p, std::size_t k, const std::vector<std::uint32_t>* pair_i,
+                                         const std::vector<std::uint32_t>* pair_j) {
+  region_members_.clear();
+  region_d0_.clear();
+  auto take = [&](long a) {
+    const std::size_t i = static_cast<std::size_t>(a);
+    if (region_of_[i] != static_cast<int>(k)) return;
+    region_members_.push_back(a);
+    region_d0_.push_back(phi_[i] * d0_[i]);  // phi D(0+) (keep_sphere: this region, gravity g_)
+  };
+  if (margin_ > 0.0)
+    for (long a : members_) take(a);  // ascending (the candidates' order)
+  else
+    for (std::size_t a = 0; a < p.size(); ++a) take(static_cast<long>(a));
+  return {&p, &region_members_, &region_d0_, pair_i, pair_j, surface_[k], regions_[k].yield_stress()};
+}
+
+void FluidField::apply_factors(const ClusterStats& s) {
+  for (std::size_t q = 0; q < region_members_.size(); ++q) {
+    if (region_factor_[q] == 1.0) continue;
+    factor_[static_cast<std::size_t>(region_members_[q])] = region_factor_[q];
+    factored_.push_back(region_members_[q]);
+  }
+  stats_.clusters += s.clusters;
+  stats_.largest = std::max(stats_.largest, s.largest);
+  stats_.min_factor = std::min(stats_.min_factor, s.min_factor);
+}
+
+void FluidField::clustered(const Particles& p) {
+  clustered_version_ = pairs_version_, clustered_members_ = members_, clustered_surface_ = surface_;
+  clustered_x_.resize(members_.size());
+  for (std::size_t q = 0; q < members_.size(); ++q) clustered_x_[q] = p.x[static_cast<std::size_t>(members_[q])];
+}
+
 void FluidField::update_clusters(const Particles& p, const std::vector<std::uint32_t>* pair_i,
-                                 const std::vector<std::uint32_t>* pair_j) {
+                                 const std::vector<std::uint32_t>* pair_j, int threads) {
   if (!pair_i || !pair_j) throw std::logic_error("FluidField: a collective region needs the pair list in update()");
   for (long a : factored_) factor_[static_cast<std::size_t>(a)] = 1.0;
   factored_.clear();
   stats_ = ClusterStats{};
-  const bool listed = margin_ > 0.0;
+  long collective = 0;
+  for (const FluidRegion& reg : regions_) collective += reg.collective ? 1 : 0;
   for (std::size_t k = 0; k < regions_.size(); ++k) {
-    const FluidRegion& reg = regions_[k];
-    if (!reg.collective) continue;
-    region_members_.clear();
-    region_d0_.clear();
-    auto take = [&](long a) {
-      const std::size_t i = static_cast<std::size_t>(a);
-      if (region_of_[i] != static_cast<int>(k)) return;
-      region_members_.push_back(a);
-      region_d0_.push_back(phi_[i] * d0_[i]);  // phi D(0+) (keep_sphere: this region, gravity g_)
-    };
-    if (listed)
-      for (long a : members_) take(a);  // ascending (the candidates' order)
-    else
-      for (std::size_t a = 0; a < p.size(); ++a) take(static_cast<long>(a));
-    const CollectiveInput in{&p, &region_members_, &region_d0_, pair_i, pair_j, surface_[k], reg.yield_stress()};
-    const ClusterStats s = collective_.factors(in, region_factor_);
-    for (std::size_t q = 0; q < region_members_.size(); ++q) {
-      if (region_factor_[q] == 1.0) continue;
-      factor_[static_cast<std::size_t>(region_members_[q])] = region_factor_[q];
-      factored_.push_back(region_members_[q]);
+    if (!regions_[k].collective) continue;
+    const CollectiveInput in = region_input(p, k, pair_i, pair_j);
+    if (threads > 1 && collective == 1) {  // the team measures the footprints (finish_clusters() ends it)
+      collective_.begin(in, threads);
+      pending_region_ = static_cast<int>(k), pending_pi_ = pair_i, pending_pj_ = pair_j;
+      return;
     }
-    stats_.clusters += s.clusters;
-    stats_.largest = std::max(stats_.largest, s.largest);
-    stats_.min_factor = std::min(stats_.min_factor, s.min_factor);
+    apply_factors(collective_.factors(in, region_factor_));
   }
-  clustered_version_ = pairs_version_, clustered_members_ = members_, clustered_surface_ = surface_;
-  clustered_x_.resize(members_.size());
-  for (std::size_t q = 0; q < members_.size(); ++q) clustered_x_[q] = p.x[static_cast<std::size_t>(members_[q])];
+  clustered(p);
+}
+
+void FluidField::finish_clusters(const Particles& p) {
+  const std::size_t k = static_cast<std::size_t>(pending_region_);
+  const CollectiveInput in{&p, &region_members_, &region_d0_, pending_pi_, pending_pj_, surface_[k],
+                           regions_[k].yield_stress()};
+  apply_factors(collective_.finish(in, region_factor_));
+  pending_region_ = -1;
+  clustered(p);
 }
 
 namespace {
@@ -174,6 +202,7 @@ void rename(std::vector<long>& list, const std::vector<std::uint32_t>& map) {
 
 void FluidField::particles_moved(const std::vector<std::uint32_t>& map) {
   for (auto* v : {&v_sub_, &phi_, &y_, &d0_, &lin_k_, &lin_decay_, &lin_gain_, &factor_}) permute(*v, map);
+  for (auto* v : {&aff_k_, &aff_limit2_, &aff_decay_, &aff_gain_, &aff_fgain_}) permute(*v, map);
   permute(region_of_, map);
   permute(rest_region_, map);
   rename(candidates_, map);
@@ -232,11 +261,27 @@ double linear_slope(const FluidRegion& reg, double radius) {
       reg.law);
 }
 
+// The law's affine branch for this sphere (laws' affine_part; none: k = 0). The yield_term switch shifts D by
+// a constant, so the slope and the branch are the same with it off.
+AffinePart affine_part(const FluidRegion& reg, double y, double radius) {
+  return std::visit(
+      [&](const auto& prm) {
+        using Law = typename std::decay_t<decltype(prm)>::Law;
+        const auto sphere = Law::sphere(prm, reg.curve, 2.0 * radius, y);
+        if constexpr (requires { Law::affine_part(sphere); })
+          return Law::affine_part(sphere);
+        else
+          return AffinePart{};
+      },
+      reg.law);
+}
+
 }  // namespace
 
 void FluidField::enter(const Particles& p, std::size_t a, int region) {
   const double r = p.radius[a], phi = phi_[a];
-  if (rest_region_[a] != region) {
+  const bool new_region = rest_region_[a] != region;
+  if (new_region) {
     const FluidRegion& reg = regions_[static_cast<std::size_t>(region)];
     y_[a] = yield_number(reg, p.mass[a], r, g_);
     d0_[a] = rest_drag(reg, y_[a], r);
@@ -249,6 +294,33 @@ void FluidField::enter(const Particles& p, std::size_t a, int region) {
     const LinearKick c = linear_kick(lin_k_[a], p.mass[a] / phi, 0.5 * dt_);
     lin_decay_[a] = c.decay, lin_gain_[a] = c.gain / phi;
   }
+  keep_affine(p, a, region, new_region);
+}
+
+// The affine branch of the sphere's law (once per stay in a region) and its kick factors for this phi (the
+// mass m / phi of kick_general's scaled equation, the World's half step).
+void FluidField::keep_affine(const Particles& p, std::size_t a, int region, bool new_region) {
+  if (new_region) {
+    const FluidRegion& reg = regions_[static_cast<std::size_t>(region)];
+    const AffinePart part = affine_part(reg, y_[a], p.radius[a]);
+    // The branch ends at s_max (the curve's Re' limit); kicks within 1e-6 of it take the general kernel, so
+    // rounding of s_max cannot put an evaluation of the iterations on the other branch.
+    const double lim = part.s_max * (1.0 - 1e-6);
+    aff_k_[a] = part.k, aff_limit2_[a] = lim * lim;
+  }
+  if (!(aff_k_[a] > 0.0)) return;
+  const double phi = phi_[a];
+  const LinearKick c = linear_kick(aff_k_[a], p.mass[a] / phi, 0.5 * dt_);
+  aff_decay_[a] = c.decay, aff_gain_[a] = c.gain, aff_fgain_[a] = c.gain / phi;
+}
+
+void FluidField::restored(const Particles& p) {
+  const std::size_t n = p.size();
+  aff_k_.assign(n, 0.0), aff_limit2_.assign(n, 0.0), aff_decay_.assign(n, 1.0), aff_gain_.assign(n, 0.0);
+  aff_fgain_.assign(n, 0.0);
+  if (rest_region_.size() != n) return;  // update() makes every constant anew
+  for (std::size_t a = 0; a < n; ++a)
+    if (rest_region_[a] >= 0) keep_affine(p, a, rest_region_[a], true);
 }
 
 Vec3 FluidField::kick_general(long a, const Vec3& v, const Vec3& F, double mass, double radius, double h,

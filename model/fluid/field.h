@@ -20,6 +20,10 @@
 // A linear law without a rest part (laws' linear_slope: Newtonian with the Stokes curve) takes that kernel's
 // closed form instead (drag_kick.h linear_kick: what its iterations converge to, ~1e-13 m/s from them), with
 // its two factors kept per sphere, so its kick is three multiply-adds per component (issue 19).
+// A law with an affine branch (laws' affine_part: Bingham on the Stokes or the published curve, whose
+// Cd = 24/Re' makes D = D(0+) + 3 pi eta_B d s below the speed where Re' = 1) takes the closed form of that
+// kernel there (drag_kick.h affine_kick: its factors kept per sphere, no iteration, no exp), and the
+// iterations above it; the two agree within 1e-12 m/s + 1e-11 |v| (tests/model/fluid/drag_kick_test.cpp).
 // No fluid torque is applied (the spin is untouched by the fluid: a stated simplification).
 // With collective = "bearing_capacity" the rest part D(0+) of a sphere in a cluster of touching submerged
 // spheres is multiplied by its cluster factor (collective.h: shadowing, footing capacity), recomputed every
@@ -83,8 +87,15 @@ class FluidField {
   // Region membership and submerged volumes at the current positions; then the surfaces rise. With a
   // collective region, also its clusters every collective_interval: they need the candidate pairs (dense
   // indices, any superset of the touching pairs: the World's pair list).
+  // With threads > 1 (the World's fluid pass, called by one thread of a team of that many), a cluster update
+  // of a single collective region stops before the footprints and clusters_pending() says so: then every
+  // thread t of the team calls footprints(t), and after a barrier one thread calls finish_clusters(p): the
+  // same bits as threads = 1 (collective.h CollectiveYield::begin / footprints / finish).
   void update(const Particles& p, const std::vector<std::uint32_t>* pair_i = nullptr,
-              const std::vector<std::uint32_t>* pair_j = nullptr);
+              const std::vector<std::uint32_t>* pair_j = nullptr, int threads = 1);
+  bool clusters_pending() const { return pending_region_ >= 0; }
+  void footprints(int thread) { collective_.footprints(thread); }
+  void finish_clusters(const Particles& p);
   // The step (s) and gravity (m/s2) of the World: set before the first update() when a region is collective.
   void set_step(double dt, const Vec3& g) {
     if (dt != dt_ || g.x != g_.x || g.y != g_.y || g.z != g_.z) rest_region_.assign(rest_region_.size(), -1);  // kept for the old ones
@@ -101,7 +112,11 @@ class FluidField {
     factor_.clear(), factored_.clear();  // indices changed: the clusters are recomputed at the next update
     phi_.clear(), y_.clear(), d0_.clear(), rest_region_.clear(), clustered_members_.clear();
     lin_k_.clear(), lin_decay_.clear(), lin_gain_.clear();
+    aff_k_.clear(), aff_limit2_.clear(), aff_decay_.clear(), aff_gain_.clear(), aff_fgain_.clear();
   }
+  // A checkpoint was restored (model/checkpoint.cpp keeps what the kick needs but not the affine factors,
+  // which follow from it): they are made anew for the particles inside a region, the same values.
+  void restored(const Particles& p);
   // The World permuted the particles (its spatial sort at a pair-list rebuild; map: old -> new dense index, a
   // permutation): every per-particle array moves with its particle and the index lists are renamed and kept
   // ascending, so each particle keeps its region, its constants and its cluster factor (the same kicks as
@@ -119,6 +134,17 @@ class FluidField {
       const double rho_b = buoyant_density_[static_cast<std::size_t>(region_of_[i])];  // 0: buoyancy off
       const Vec3 force = rho_b > 0.0 ? F - g * (rho_b * v_sub_[i]) : F;
       return v * lin_decay_[i] + force * lin_gain_[i];
+    }
+    // A law on its affine branch (Bingham on the Stokes / published curve's Cd = 24/Re'), the usual case in a
+    // paste: its kept factors (drag_kick.h affine_kick), the general kick where the speed leaves the branch.
+    if (aff_k_[i] > 0.0 && h == 0.5 * dt_ && g.x == g_.x && g.y == g_.y && g.z == g_.z) {
+      const double rho_b = buoyant_density_[static_cast<std::size_t>(region_of_[i])];
+      const Vec3 force = rho_b > 0.0 ? F - g * (rho_b * v_sub_[i]) : F;
+      const LinearKick c{aff_decay_[i], aff_gain_[i]};
+      Vec out;
+      if (affine_kick(c, aff_fgain_[i], d0_[i] * yield_factor(a), aff_limit2_[i], Vec{v.x, v.y, v.z},
+                      Vec{force.x, force.y, force.z}, out))
+        return {out[0], out[1], out[2]};
     }
     return kick_general(a, v, F, mass, radius, h, g);
   }
@@ -164,9 +190,14 @@ class FluidField {
     // constants are made once per stay in a region; one at the surface gets its linear factors each step.
     const bool moved = phi != phi_[a];
     phi_[a] = phi;
-    if (rest_region_[a] != region || (moved && lin_k_[a] > 0.0)) enter(p, a, region);
+    if (rest_region_[a] != region || (moved && (lin_k_[a] > 0.0 || aff_k_[a] > 0.0))) enter(p, a, region);
   }
+  // A law with an affine branch (laws' affine_part, D = D(0+) + k s below s_max): k (N s/m, 0: none), s_max^2
+  // less a margin (m2/s2), and for this step's phi and the half step dt_/2 the kick's factors (drag_kick.h
+  // affine_kick: decay -, gain s/kg, f_gain = gain / phi s/kg). Not in the checkpoint: restored() remakes them.
+  std::vector<double> aff_k_, aff_limit2_, aff_decay_, aff_gain_, aff_fgain_;
   void enter(const Particles& p, std::size_t a, int region);  // the constants of keep_sphere
+  void keep_affine(const Particles& p, std::size_t a, int region, bool new_region);  // enter()'s aff_ part
   std::vector<double> buoyant_density_;  // kg/m3 per region, 0 where buoyancy is off (the inline kick)
   Vec3 kick_general(long a, const Vec3& v, const Vec3& F, double mass, double radius, double h, const Vec3& g) const;
   // Clusters are recomputed only when their input changed: the members, their positions, the surfaces or
@@ -190,7 +221,15 @@ class FluidField {
   std::vector<long> region_members_;
   std::vector<double> region_d0_, region_factor_;
   void update_clusters(const Particles& p, const std::vector<std::uint32_t>* pair_i,
-                       const std::vector<std::uint32_t>* pair_j);
+                       const std::vector<std::uint32_t>* pair_j, int threads);
+  // The cluster update of region k: its members and their phi D(0+) into region_members_ / region_d0_.
+  CollectiveInput region_input(const Particles& p, std::size_t k, const std::vector<std::uint32_t>* pair_i,
+                               const std::vector<std::uint32_t>* pair_j);
+  void apply_factors(const ClusterStats& s);  // region_factor_ onto factor_, the stats summed
+  void clustered(const Particles& p);         // what clusters_unchanged() compares next time
+  int pending_region_ = -1;                   // the region whose footprints are being measured, -1: none
+  const std::vector<std::uint32_t>* pending_pi_ = nullptr;
+  const std::vector<std::uint32_t>* pending_pj_ = nullptr;
 };
 
 }  // namespace pastemix::model::fluid

@@ -7,6 +7,8 @@
 // [[fluid]] there is no field and the pass is inactive: one pointer test per kick.
 #pragma once
 
+#include <omp.h>
+
 #include <memory>
 #include <vector>
 
@@ -28,7 +30,15 @@ struct FluidForces {
     // The update reads the positions of every particle (all drifted: the step's barrier) and must precede
     // every kick: one thread, then the barrier of `single`.
 #pragma omp single
-    field->update(s.p, &s.pairs.i, &s.pairs.j);
+    field->update(s.p, &s.pairs.i, &s.pairs.j, omp_get_num_threads());
+    // A cluster update's footprints (the costly part of the collective rule) are shared by the team, then
+    // one thread applies the factors; the single's barriers keep every kick after it (same bits as 1 thread).
+    if (field->clusters_pending()) {
+      field->footprints(omp_get_thread_num());
+#pragma omp barrier
+#pragma omp single
+      field->finish_clusters(s.p);
+    }
   }
 
   // The pair list was rebuilt: no particle has moved skin/2 since, the candidates are refreshed.

@@ -14,6 +14,8 @@
 //   magnitude(sphere, s) the drag D(s) >= 0 in N at speed s >= 0, non-decreasing in s; D(0+) is the rest
 //                        resistance the stable kick holds (fluid/drag_kick.h)
 //   yield_term(sphere)   N, the (pi d / 2)^2 tau_y part of D (the scene's yield_term = false removes it)
+//   affine_part(sphere)  (optional) AffinePart: the speeds below s_max where D is exactly D(0+) + k s (the
+//                        stable kick then has a closed form: fluid/drag_kick.h affine_kick)
 //
 // The fluid pass (fluid/field.cpp) reaches a drag law only through this list, and the kick it runs is
 // fluid/drag_kick.h's drag_kick_implicit over the law's magnitude.
@@ -43,6 +45,12 @@ struct DragSphere {
   P fluid;
   const drag::DragCurve* curve = nullptr;
   double d = 0.0, y = 0.0;  // m, -
+};
+
+// A law's optional affine branch (affine_part(sphere)): D(s) = D(0+) + k s for 0 <= s < s_max (k = 0: none).
+struct AffinePart {
+  double k = 0.0;      // N s/m
+  double s_max = 0.0;  // m/s
 };
 
 // Projected area pi d^2 / 4 of a sphere of diameter d (m), m^2.

@@ -201,3 +201,41 @@ TEST_CASE("collective: a 6 x 6 raft sinks to the depth where its load equals the
   const RaftEnd alone = run_raft(1, d, rho_p, tau, "bearing_capacity");
   CHECK(alone.sink == 0.0);
 }
+
+TEST_CASE("collective: the footprints shared by 2, 3 or 7 parts give the factors of one part, to the bit") {
+  // CollectiveYield::begin / footprints(t) / finish: the World's threads each measure a share of every
+  // cluster's strips; the covered lengths are summed in strip order, so any number of parts (and any thread
+  // running any part) gives factors() exactly. A random heap of 400 spheres of 1.25-2.5 mm, partly above the
+  // surface (wetted caps), several clusters.
+  const double tau = 138.0, zs = 0.02;
+  Rng rng(20261202);
+  Particles p;
+  for (int k = 0; k < 400; ++k) {
+    const double r = 1.25e-3 + 1.25e-3 * rng.uniform();
+    p.add(0, r, 2760, {0.04 * rng.uniform(), 0.03 * rng.uniform(), zs - 0.012 + 0.014 * rng.uniform()}, {}, {});
+  }
+  std::vector<std::uint32_t> pi, pj;
+  for (std::uint32_t a = 0; a < p.size(); ++a)
+    for (std::uint32_t b = a + 1; b < p.size(); ++b)
+      if (norm(p.x[a] - p.x[b]) < p.radius[a] + p.radius[b] + 1e-4) pi.push_back(a), pj.push_back(b);
+  std::vector<long> members;
+  std::vector<double> d0;
+  for (long a = 0; a < static_cast<long>(p.size()); ++a) members.push_back(a), d0.push_back(0.01 + 0.001 * static_cast<double>(a % 7));
+  const CollectiveInput in{&p, &members, &d0, &pi, &pj, zs, tau};
+  CollectiveYield one;
+  std::vector<double> f1;
+  const ClusterStats s1 = one.factors(in, f1);
+  CHECK(s1.clusters >= 2);
+  for (int parts : {2, 3, 7}) {
+    CollectiveYield rule;
+    std::vector<double> f;
+    rule.begin(in, parts);
+    for (int t = parts - 1; t >= 0; --t) rule.footprints(t);  // any order of the parts
+    const ClusterStats s = rule.finish(in, f);
+    CHECK(s.clusters == s1.clusters);
+    CHECK(s.min_factor == s1.min_factor);
+    long same = 0;
+    for (std::size_t k = 0; k < f.size(); ++k) same += f[k] == f1[k] ? 1 : 0;
+    CHECK(same == static_cast<long>(f1.size()));
+  }
+}
