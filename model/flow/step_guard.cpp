@@ -60,12 +60,16 @@ std::array<FaceAt, 2> fastest(const Grid& g, const Faces& u, const std::vector<d
   return {any, paste};
 }
 
-std::string cause(const std::array<double, 2>& a, double speed, double paste_speed) {
+// What the fastest face is (f), from the paste fraction on its two sides (a) and the fastest paste face.
+std::string cause(const Grid& g, const FaceAt& f, const std::array<double, 2>& a, double paste_speed) {
   const bool air = std::max(a[0], a[1]) < kPure, in_paste = std::min(a[0], a[1]) > 1.0 - kPure;
-  const char* where = air ? "in the air" : in_paste ? "in the paste" : "at the interface";
-  // A runaway of the light phase drags the paste only later (VALIDATION.md: 64 m/s of air, 0.5 m/s of paste).
-  if (!in_paste && paste_speed < 0.1 * speed) return fmt::format("air velocity runaway {}", where);
-  return fmt::format("velocity runaway {}", where);
+  std::string where = air ? "in the air" : in_paste ? "in the paste" : "at the interface";
+  // A face of the open side: the flow through it is the pressure condition's, not a wall's (VALIDATION.md).
+  if (g.boundary_face(f.c, f.q[f.c]) && g.side(f.c, f.q[f.c] == 0 ? 0 : 1).type == BoundaryType::open)
+    where += fmt::format(", through the open {}_{} side", "xyz"[f.c], f.q[f.c] == 0 ? "lo" : "hi");
+  // A runaway of the light phase drags the paste only later (VALIDATION.md: 30 m/s of air, 0.15 m/s of paste).
+  if (!in_paste && paste_speed < 0.1 * f.speed) return "air velocity runaway " + where;
+  return "velocity runaway " + where;
 }
 
 }  // namespace
@@ -96,7 +100,7 @@ void require_time_step_above_floor(const Grid& g, const StepControl& c, const Fa
       "of the {} {:.3g} s); fastest face: {} face ({}, {}, {}) at ({:.4g}, {:.4g}, {:.4g}) m, |u| = {:.4g} m/s, "
       "paste fraction {:.3f} | {:.3f} on its two sides; fastest paste face {:.3g} m/s: {}",
       time, step, dt, floor, kStepCollapse, ref.what, ref.dt, "xyz"[f.c], f.q[0], f.q[1], f.q[2], x[0], x[1], x[2],
-      f.speed, a[0], a[1], paste.speed, cause(a, f.speed, paste.speed)));
+      f.speed, a[0], a[1], paste.speed, cause(g, f, a, paste.speed)));
 }
 
 }  // namespace pastemix::flow
