@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Helpers of the bad-input tests of every layer: the message a user would read, and a text with one edit.
+// Helpers of the error tests of every layer: the message a user would read, and a text with one edit.
 #pragma once
 
 #include <string>
@@ -19,6 +19,17 @@ std::string input_error_of(F&& f, const std::string& none = "") {
     return e.what();
   }
   return none;
+}
+
+// The message of the RuntimeFailure (a computation that cannot go on) that f() throws; "" if it throws none.
+template <class F>
+std::string runtime_failure_of(F&& f) {
+  try {
+    f();
+  } catch (const RuntimeFailure& e) {
+    return e.what();
+  }
+  return "";
 }
 
 // `s` with the first `from` replaced by `to`; a `from` that is not there fails the test (the edit would be lost).

@@ -74,6 +74,16 @@ struct Grid {
     if (periodic(d)) return ((i % n[d]) + n[d]) % n[d];
     return i < 0 ? 0 : (i > n[d] ? n[d] : i);
   }
+  // Calls f(c, q) for every face q = (i, j, k) of each component c, c outermost, then in storage order (x fastest).
+  template <class F>
+  void for_each_face(F&& f) const {
+    for (int c = 0; c < 3; ++c) {
+      const auto fd = face_dims(c);
+      for (int k = 0; k < fd[2]; ++k)
+        for (int j = 0; j < fd[1]; ++j)
+          for (int i = 0; i < fd[0]; ++i) f(c, std::array<int, 3>{i, j, k});
+    }
+  }
   // Throws std::invalid_argument if the grid is not usable (no cells, periodic on one side only, ...).
   void check() const;
   std::string describe() const;

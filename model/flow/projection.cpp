@@ -58,18 +58,12 @@ double norm2(const std::vector<double>& v) {
 // Calls f(c, face, cell_lo, cell_hi) for every face of every component; a missing cell is -1.
 template <class F>
 void each_face(const Grid& g, F&& f) {
-  for (int c = 0; c < 3; ++c) {
-    const auto fd = g.face_dims(c);
-    for (int k = 0; k < fd[2]; ++k)
-      for (int j = 0; j < fd[1]; ++j)
-        for (int i = 0; i < fd[0]; ++i) {
-          const std::array<int, 3> q{i, j, k};
-          std::array<int, 3> a = q, b = q;
-          a[c] = g.wrap_cell(c, q[c] - 1);
-          b[c] = g.wrap_cell(c, q[c]);
-          f(c, g.face(c, q), a[c] >= 0 ? g.cell(a) : -1L, b[c] >= 0 ? g.cell(b) : -1L, q[c]);
-        }
-  }
+  g.for_each_face([&](int c, const std::array<int, 3>& q) {
+    std::array<int, 3> a = q, b = q;
+    a[c] = g.wrap_cell(c, q[c] - 1);
+    b[c] = g.wrap_cell(c, q[c]);
+    f(c, g.face(c, q), a[c] >= 0 ? g.cell(a) : -1L, b[c] >= 0 ? g.cell(b) : -1L, q[c]);
+  });
 }
 
 }  // namespace

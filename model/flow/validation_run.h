@@ -18,6 +18,13 @@ Cost cost_of(const FlowSolver& s);
 
 // |v - v0| / v0 (0 when v0 = 0): the paste volume's drift over a run.
 double relative_drift(double v, double v0);
+// What a validation's result ends its run with: the paste volume's drift from v0 (m3) and the solver's cost.
+template <class Result>
+Result finished(Result r, const FlowSolver& s, double v0) {
+  r.volume_drift = relative_drift(s.paste_volume(), v0);
+  r.cost = cost_of(s);
+  return r;
+}
 // ||div u|| after the projection over ||div u*|| before it (0 when there was none): the step's leftover.
 double relative_divergence(const StepStats& st);
 

@@ -120,9 +120,7 @@ CavityResult cavity(int n, double re, const GhiaReference& ref, double max_time,
   };
   score(ref.u_vertical, zu, u, r.model_u, r.max_error_u, r.rms_error_u);
   score(ref.v_horizontal, xw, w, r.model_v, r.max_error_v, r.rms_error_v);
-  r.volume_drift = relative_drift(s.paste_volume(), v0);
-  r.cost = cost_of(s);
-  return r;
+  return finished(r, s, v0);
 }
 
 StillResult still(double end_time, double ratio, double interface_cells) {
@@ -147,9 +145,7 @@ StillResult still(double end_time, double ratio, double interface_cells) {
     r.max_divergence = std::max(r.max_divergence, relative_divergence(s.last()));
   }
   r.time = s.time();
-  r.volume_drift = relative_drift(s.paste_volume(), v0);
-  r.cost = cost_of(s);
-  return r;
+  return finished(r, s, v0);
 }
 
 namespace {
@@ -171,7 +167,7 @@ double bottom_front(const FlowSolver& s) {
 
 }  // namespace
 
-FlowSolver dam_break_setup(int cells_across) {
+FlowSolver dam_break_setup(int cells_across, double rho_air) {
   const double a = kDamBreakWidth;
   Grid g;
   // 10a long: the model's front is at 7.7a at T = 5.09 (the last compared point; about 8.4a by T = 5.5), so the far wall stays
@@ -184,7 +180,7 @@ FlowSolver dam_break_setup(int cells_across) {
   g.bc[2].type = g.bc[3].type = BoundaryType::periodic;
   Phases ph;
   ph.rho_paste = 1000.0;
-  ph.rho_air = 1.2;
+  ph.rho_air = rho_air;
   ph.paste = std::make_shared<Newtonian>(1.0e-3);
   ph.eta_air = 1.8e-5;
   FlowSettings fs;
@@ -225,9 +221,7 @@ DamBreakResult dam_break(int cells_across, const std::vector<double>& T) {
     r.T.push_back(Ti);
     r.front.push_back(bottom_front(s) / a);
   }
-  r.volume_drift = relative_drift(s.paste_volume(), v0);
-  r.cost = cost_of(s);
-  return r;
+  return finished(r, s, v0);
 }
 
 double time_to_reach(const Series& track, double Z) {

@@ -65,8 +65,9 @@ struct DamBreakResult {
 DamBreakResult dam_break(int cells_across, const std::vector<double>& T);
 inline constexpr double kDamBreakWidth = 2.25 * 0.0254;  // m, the column's width a (Martin & Moyce's larger column)
 inline constexpr double kDamBreakGravity = 9.81;         // m/s2
-// The dam break at t = 0: water (1000 kg/m3) in [0, a] x [0, 2a], air around it, the closed free-slip box.
-FlowSolver dam_break_setup(int cells_across);
+// The dam break at t = 0: water (1000 kg/m3) in [0, a] x [0, 2a], air (rho_air, kg/m3) around it, the closed
+// free-slip box.
+FlowSolver dam_break_setup(int cells_across, double rho_air = 1.2);
 // The pressure (Pa) in the column just after an instant release, relative to the column's top, at (x, z) in
 // [0, a] x [0, 2a]: the potential-flow solution of the first instant (velocity zero, acceleration from
 // -grad p / rho + g): Laplace's equation, p = 0 on the free face x = a and on the top z = 2a, dp/dx = 0 on the

@@ -109,9 +109,7 @@ PoiseuilleResult bingham_poiseuille(int cells, double m, const BinghamPaste& p) 
   r.plug_width_exact = 2.0 * p.tau_y / G;
   r.plug_width = yield_surface(r.u, h, *law, true) - yield_surface(r.u, h, *law, false);
   r.plug_speed = *std::max_element(r.u.begin(), r.u.end());
-  r.volume_drift = relative_drift(s.paste_volume(), v0);
-  r.cost = cost_of(s);
-  return r;
+  return finished(r, s, v0);
 }
 
 InclineResult bingham_incline(double depth_over_hc, int cells, double m, double theta_deg, const BinghamPaste& p) {
@@ -153,9 +151,7 @@ InclineResult bingham_incline(double depth_over_hc, int cells, double m, double 
   }
   r.time = s.time();
   r.surface_speed = surface();
-  r.volume_drift = relative_drift(s.paste_volume(), v0);
-  r.cost = cost_of(s);
-  return r;
+  return finished(r, s, v0);
 }
 
 namespace {
@@ -212,9 +208,7 @@ CliffResult bingham_cliff(double height_over_scale, int cells, double m, double 
   r.time = s.time();
   r.front_advance = floor_front(s) - front0;
   r.top_drop = top0 - top_height(s);
-  r.volume_drift = relative_drift(s.paste_volume(), v0);
-  r.cost = cost_of(s);
-  return r;
+  return finished(r, s, v0);
 }
 
 }  // namespace pastemix::flow
@@ -382,9 +376,7 @@ SlumpResult bingham_slump(double cell, double m, double tau_y, double rho, doubl
   const SlumpShape shape = slump_shape(s);
   r.slump = shape.slump;
   r.spread = shape.spread;
-  r.volume_drift = relative_drift(s.paste_volume(), v0);
-  r.cost = cost_of(s);
-  return r;
+  return finished(r, s, v0);
 }
 
 }  // namespace pastemix::flow

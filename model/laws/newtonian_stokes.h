@@ -7,6 +7,7 @@
 
 #include "base/drag_curves.h"
 #include "base/params.h"
+#include "base/units.h"
 #include "model/laws/drag_law.h"
 
 namespace pastemix::model {
@@ -32,7 +33,7 @@ struct NewtonianStokes {
   // the stable kick (fluid/drag_kick.h) has the closed form of a linear drag; 0 with any other curve (then D is
   // not linear in s and the kick iterates on magnitude()).
   static double linear_slope(const Sphere& s) {
-    return s.curve->id == drag::CurveId::stokes ? 3.0 * 3.14159265358979323846 * s.fluid.viscosity * s.d : 0.0;
+    return s.curve->id == drag::CurveId::stokes ? 3.0 * units::pi * s.fluid.viscosity * s.d : 0.0;
   }
   // N; s in m/s. Re as the Bingham form with tau_y = 0 (0 + x is exact: the same bits as that form).
   static double magnitude(const Sphere& s, double speed) {

@@ -14,13 +14,7 @@
 #include "tests/run_command.h"
 
 namespace fs = std::filesystem;
-using pastemix::test::run_pastemix;
-using pastemix::test::source_path;
-
-using pastemix::test::Dataset;
-using pastemix::test::line_of;
-using pastemix::test::read_text;
-using pastemix::test::write_text;
+using namespace pastemix::test;  // the fixtures: Dataset, run_pastemix, read_text, ...
 
 TEST_CASE("bad input 1: missing column") {
   Dataset d("missing_column");

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 
 #include "base/error.h"
 #include "model/scene.h"
@@ -82,12 +83,7 @@ inline std::string rock_factory(const std::string& mass, const std::string& min,
 // Runs `steps` (any callable) and returns the RuntimeFailure's message it stopped with ("" if none).
 template <class Steps>
 std::string failure_of(Steps&& steps) {
-  try {
-    steps();
-  } catch (const RuntimeFailure& e) {
-    return e.what();
-  }
-  return "";
+  return pastemix::test::runtime_failure_of(std::forward<Steps>(steps));
 }
 
 }  // namespace pastemix::model::test

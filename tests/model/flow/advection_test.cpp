@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "model/flow/solver.h"
+#include "model/flow/validations.h"
 
 using namespace pastemix::flow;
 
@@ -98,19 +99,8 @@ TEST_CASE("advection: a collapsing column at density ratio 8300 makes no air jet
   // volumes the air next to the front was kicked by ~1 m/s per step and reached 1000 m/s before T = 0.8. The
   // fastest physical speed here is the free fall over the column's height 2a: sqrt(2 g 2a) = 1.5 m/s; the
   // front's speed stays below it. Bound: 2 x that.
-  const double a = 2.25 * 0.0254, h = a / 10;
-  Grid g;
-  g.n = {80, 1, 25};
-  g.h = {h, h, h};
-  for (Boundary& b : g.bc) b.type = BoundaryType::free_slip;
-  g.bc[2].type = g.bc[3].type = BoundaryType::periodic;
-  Phases ph;
-  ph.rho_paste = 1000.0;
-  ph.rho_air = 0.12;
-  ph.paste = std::make_shared<Newtonian>(1.0e-3);
-  ph.eta_air = 1.8e-5;
-  FlowSolver s(g, ph, FlowSettings{});
-  s.add_paste_box({0, 0, 0}, {a, h, 2.0 * a});
+  const double a = kDamBreakWidth;
+  FlowSolver s = dam_break_setup(10, 0.12);
   const double v0 = s.paste_volume();
   const double t_end = 1.5 / std::sqrt(2.0 * 9.81 / a);  // T = 1.5
   double vmax = 0.0;

@@ -13,30 +13,17 @@
 
 #include "base/error.h"
 #include "model/flow/solver.h"
+#include "tests/input_error.h"
+#include "tests/model/flow/flow_fixture.h"
 
 using namespace pastemix;
 using namespace pastemix::flow;
 
 namespace {
 
-Grid box() {
-  Grid g;
-  g.n = {5, 4, 6};
-  g.h = {0.01, 0.01, 0.01};
-  g.bc[5].type = BoundaryType::open;
-  return g;
-}
+Grid box() { return pastemix::test::cube_box({5, 4, 6}, 0.01, true); }
 
-// The message of the RuntimeFailure f throws ("" if none).
-template <class F>
-std::string failure(F&& f) {
-  try {
-    f();
-  } catch (const RuntimeFailure& e) {
-    return e.what();
-  }
-  return "";
-}
+using pastemix::test::runtime_failure_of;
 
 // A law that turns non-finite above a strain rate: stands for a viscosity formula evaluated out of its range.
 class BrokenAbove final : public Rheology {
@@ -59,18 +46,18 @@ TEST_CASE("finite check: the first bad cell or face is named with its (i, j, k),
   CHECK_NOTHROW(require_finite_cells(g, v, "paste fraction", at));
   v[g.cell(2, 1, 3)] = std::nan("");
   v[g.cell(4, 3, 5)] = std::nan("");  // after the first: not the one named
-  const std::string m = failure([&] { require_finite_cells(g, v, "paste fraction", at); });
+  const std::string m = runtime_failure_of([&] { require_finite_cells(g, v, "paste fraction", at); });
   CHECK(m.find("paste fraction non-finite: nan at cell (2, 1, 3), after advection") != std::string::npos);
   CHECK(m.find("t = 0.25 s (step 17)") != std::string::npos);
   v.assign(v.size(), 1.0);
   v[g.cell(0, 2, 1)] = 0.0;
   CHECK_NOTHROW(require_finite_cells(g, v, "viscosity", at));  // zero is finite
-  CHECK(failure([&] { require_finite_cells(g, v, "viscosity", at, true); })
+  CHECK(runtime_failure_of([&] { require_finite_cells(g, v, "viscosity", at, true); })
             .find("viscosity not positive: 0 at cell (0, 2, 1)") != std::string::npos);
   Faces u;
   for (int c = 0; c < 3; ++c) u[c].assign(g.face_count(c), 0.0);
   u[1][g.face(1, {1, 4, 2})] = -std::numeric_limits<double>::infinity();
-  CHECK(failure([&] { require_finite_faces(g, u, "velocity", at); }).find("velocity non-finite: -inf at y face (1, 4, 2)") !=
+  CHECK(runtime_failure_of([&] { require_finite_faces(g, u, "velocity", at); }).find("velocity non-finite: -inf at y face (1, 4, 2)") !=
         std::string::npos);
 }
 
@@ -82,7 +69,7 @@ TEST_CASE("finite check: the solver stops at the stage that made the bad value")
     s.add_paste_box({0, 0, 0}, {0.05, 0.04, 0.03});
     s.step(1e-3);
     s.velocity()[0][g.face(0, {2, 1, 3})] = std::nan("");
-    const std::string m = failure([&] { s.step(1e-3); });
+    const std::string m = runtime_failure_of([&] { s.step(1e-3); });
     CHECK(m.find("velocity non-finite: nan at x face (2, 1, 3), on entry to the step, in the step from t = 0.001 s "
                  "(step 1)") != std::string::npos);
   }
@@ -91,7 +78,7 @@ TEST_CASE("finite check: the solver stops at the stage that made the bad value")
     ph.rho_air = 0.0;
     FlowSolver s(g, ph, FlowSettings{});
     s.add_paste_box({0, 0, 0}, {0.05, 0.04, 0.02});
-    CHECK(failure([&] { s.step(1e-3); }).find("face density not positive: 0 at x face (0, 0, 2), after the face densities") !=
+    CHECK(runtime_failure_of([&] { s.step(1e-3); }).find("face density not positive: 0 at x face (0, 0, 2), after the face densities") !=
           std::string::npos);
   }
   SUBCASE("a law that returns NaN once the paste shears") {
@@ -100,7 +87,7 @@ TEST_CASE("finite check: the solver stops at the stage that made the bad value")
     FlowSolver s(g, ph, FlowSettings{});
     s.add_paste_box({0, 0, 0}, {0.02, 0.04, 0.06});  // a column that collapses
     std::string m;
-    for (int i = 0; i < 20 && m.empty(); ++i) m = failure([&] { s.step(1e-3); });
+    for (int i = 0; i < 20 && m.empty(); ++i) m = runtime_failure_of([&] { s.step(1e-3); });
     // The lagged strain rate is zero in the first step, so the first bad viscosity comes after a step of flow.
     CHECK(m.find("viscosity non-finite: nan at cell (") != std::string::npos);
     CHECK(m.find(", after the viscosities, in the step from t = 0.001 s (step 1)") != std::string::npos);

@@ -11,17 +11,13 @@
 #include "model/flow/advection.h"
 #include "model/flow/linear.h"
 #include "model/flow/solver.h"
+#include "tests/model/flow/flow_fixture.h"
 
 using namespace pastemix::flow;
 
 namespace {
 
-Grid closed_box() {
-  Grid g;
-  g.n = {8, 6, 10};
-  g.h = {0.01, 0.01, 0.01};
-  return g;
-}
+Grid closed_box() { return pastemix::test::cube_box({8, 6, 10}, 0.01, false); }
 
 // A smooth solid fraction: a porous ball (peak 0.5) centred at c (m), radius R (m).
 std::vector<double> fluid_fraction(const Grid& g, std::array<double, 3> c, double R) {
@@ -40,16 +36,10 @@ Faces random_faces(const Grid& g, unsigned seed) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> U(-1.0, 1.0);
   Faces u;
-  for (int c = 0; c < 3; ++c) {
-    u[c].assign(g.face_count(c), 0.0);
-    const auto fd = g.face_dims(c);
-    for (int k = 0; k < fd[2]; ++k)
-      for (int j = 0; j < fd[1]; ++j)
-        for (int i = 0; i < fd[0]; ++i) {
-          const std::array<int, 3> q{i, j, k};
-          if (!g.boundary_face(c, q[c])) u[c][g.face(c, q)] = 0.01 * U(rng);
-        }
-  }
+  for (int c = 0; c < 3; ++c) u[c].assign(g.face_count(c), 0.0);
+  g.for_each_face([&](int c, const std::array<int, 3>& q) {
+    if (!g.boundary_face(c, q[c])) u[c][g.face(c, q)] = 0.01 * U(rng);
+  });
   return u;
 }
 
@@ -135,14 +125,8 @@ TEST_CASE("fluid fraction: a paste-filled box with a moving porous ball keeps fu
 }
 
 TEST_CASE("fluid fraction: a paste at rest around a fixed porous ball stays at rest (hydrostatic with eps_f < 1)") {
-  Grid g;
-  g.n = {6, 6, 16};
-  g.h = {0.01, 0.01, 0.01};
-  g.bc[5].type = BoundaryType::open;
-  Phases ph;
-  ph.rho_paste = 1843.0;
-  FlowSolver s(g, ph, FlowSettings{});
-  s.add_paste_box({0, 0, 0}, {0.06, 0.06, 0.1037});
+  FlowSolver s = pastemix::test::paste_column({6, 6, 16}, 0.01, 1843.0, 0.1037);
+  const Grid& g = s.grid();
   s.set_fluid_fraction(fluid_fraction(g, {0.03, 0.03, 0.1}, 0.025));  // through the surface
   const double v0 = s.paste_volume();
   for (int n = 0; n < 50; ++n) {

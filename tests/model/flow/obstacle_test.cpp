@@ -122,15 +122,9 @@ TEST_CASE("obstacle: the projection drops a blocked face (no flux, velocity unto
     for (std::size_t f = 0; f < u[c].size(); ++f)
       if (blocked(wall, c, static_cast<long>(f))) u[c][f] = 0.0;
   // The box's walls carry no normal velocity.
-  for (int c = 0; c < 3; ++c) {
-    const auto fd = g.face_dims(c);
-    for (int k = 0; k < fd[2]; ++k)
-      for (int j = 0; j < fd[1]; ++j)
-        for (int i = 0; i < fd[0]; ++i) {
-          const std::array<int, 3> q{i, j, k};
-          if (g.boundary_face(c, q[c]) && !(c == 2 && q[2] == g.n[2])) u[c][g.face(c, q)] = 0.0;
-        }
-  }
+  g.for_each_face([&](int c, const std::array<int, 3>& q) {
+    if (g.boundary_face(c, q[c]) && !(c == 2 && q[2] == g.n[2])) u[c][g.face(c, q)] = 0.0;
+  });
   const Faces u_start = u;
   PressureOperator op(g);
   op.set_blocked(&wall);

@@ -18,14 +18,8 @@ void each_face(const Grid& g, Faces& u, Faces& rho, Set set) {
   for (int c = 0; c < 3; ++c) {
     u[c].assign(g.face_count(c), 0.0);
     rho[c].assign(g.face_count(c), 0.0);
-    const auto fd = g.face_dims(c);
-    for (int k = 0; k < fd[2]; ++k)
-      for (int j = 0; j < fd[1]; ++j)
-        for (int i = 0; i < fd[0]; ++i) {
-          const std::array<int, 3> q{i, j, k};
-          set(c, q, u[c][g.face(c, q)], rho[c][g.face(c, q)]);
-        }
   }
+  g.for_each_face([&](int c, const std::array<int, 3>& q) { set(c, q, u[c][g.face(c, q)], rho[c][g.face(c, q)]); });
 }
 
 }  // namespace
@@ -92,18 +86,15 @@ TEST_CASE("projection: the discrete gradient of any cell field is removed entire
     for (int c = 0; c < 3; ++c) {
       u[c].assign(g.face_count(c), 0.0);
       rho[c].assign(g.face_count(c), 1000.0);
-      const auto fd = g.face_dims(c);
-      for (int k = 0; k < fd[2]; ++k)
-        for (int j = 0; j < fd[1]; ++j)
-          for (int i = 0; i < fd[0]; ++i) {
-            std::array<int, 3> q{i, j, k}, a = q;
-            a[c] -= 1;
-            double& v = u[c][g.face(c, q)];
-            if (!g.boundary_face(c, q[c])) v = (phi[g.cell(q)] - phi[g.cell(a)]) / g.h[c];
-            else if (open && c == 2 && k == g.n[2]) v = (0.0 - phi[g.cell(a)]) * 2.0 / g.h[c];
-            norm0 = std::max(norm0, std::abs(v));
-          }
     }
+    g.for_each_face([&](int c, const std::array<int, 3>& q) {
+      std::array<int, 3> a = q;
+      a[c] -= 1;
+      double& v = u[c][g.face(c, q)];
+      if (!g.boundary_face(c, q[c])) v = (phi[g.cell(q)] - phi[g.cell(a)]) / g.h[c];
+      else if (open && c == 2 && q[2] == g.n[2]) v = (0.0 - phi[g.cell(a)]) * 2.0 / g.h[c];
+      norm0 = std::max(norm0, std::abs(v));
+    });
     std::vector<double> p(g.cell_count(), 0.0);
     project(g, 0.01, rho, u, p, 1e-12, 10000);
     double worst = 0.0;

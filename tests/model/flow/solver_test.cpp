@@ -8,19 +8,17 @@
 
 #include <cmath>
 
+#include "tests/model/flow/flow_fixture.h"
+
 using namespace pastemix::flow;
 
 namespace {
 FlowSolver sloshing(int threads) {
   omp_set_num_threads(threads);
-  Grid g;
-  g.n = {12, 4, 10};
-  g.h = {0.01, 0.01, 0.01};
-  g.bc[5].type = BoundaryType::open;
   Phases ph;
   ph.rho_paste = 1850.0;
   ph.paste = std::make_shared<Newtonian>(0.5);
-  FlowSolver s(g, ph, FlowSettings{});
+  FlowSolver s(pastemix::test::cube_box({12, 4, 10}, 0.01, true), ph, FlowSettings{});
   s.add_paste_box({0, 0, 0}, {0.05, 0.04, 0.073});  // a column that collapses
   s.add_paste_box({0.05, 0, 0}, {0.12, 0.04, 0.021});
   s.advance_to(0.05);
@@ -53,14 +51,8 @@ TEST_CASE("solver: the step respects the CFL number and the gravity bound") {
 }
 
 TEST_CASE("solver: a three-layer column at rest has the hydrostatic pressure and stays at rest") {
-  Grid g;
-  g.n = {3, 3, 30};
-  g.h = {0.01, 0.01, 0.01};
-  g.bc[5].type = BoundaryType::open;
-  Phases ph;
-  ph.rho_paste = 2000.0;
-  FlowSolver s(g, ph, FlowSettings{});
-  s.add_paste_box({0, 0, 0}, {0.03, 0.03, 0.1234});
+  FlowSolver s = pastemix::test::paste_column({3, 3, 30}, 0.01, 2000.0, 0.1234);
+  const Grid& g = s.grid();
   s.advance_to(0.2);
   CHECK(s.max_speed() < 1e-9);
   // Bottom cell centre at z = 0.005: p = rho_air g (0.3 - 0.1234) + rho_paste g (0.1234 - 0.005), to the cell
