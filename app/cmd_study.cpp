@@ -2,7 +2,8 @@
 // `pastemix sweep SCENE.toml --vary dt|psd_cut|youngs_modulus --qoi NAME [--values ...] [--levels N]
 //  [--tol REL] [--seeds N] [--material NAME] [--set key=value ...] [--out DIR]`: speed against error
 // (app/study/sweep.h); `pastemix calibrate rolling-resistance SCENE.toml --target DEG --bracket LO HI ...`
-// (app/study/calibrate.h); `pastemix calibrate rheology --case 2 ...` (app/study/calibrate_rheology.h).
+// (app/study/calibrate.h); `pastemix calibrate rheology --case 2 ...` (app/study/calibrate_rheology.h);
+// `pastemix predict rheology --calibration REC --cases 1,4,5,6,7 ...` (app/study/predict_rheology.h).
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -13,6 +14,7 @@
 #include "base/stats.h"
 #include "app/study/calibrate.h"
 #include "app/study/calibrate_rheology.h"
+#include "app/study/predict_rheology.h"
 #include "app/study/ledger.h"
 #include "app/study/ranks.h"
 #include "app/study/tasks.h"
@@ -315,6 +317,65 @@ void register_rolling_resistance(CLI::App* cal) {
   rr->callback([c] { run_rolling_resistance(*c); });
 }
 
+
+// `pastemix predict rheology`: the protocol's prediction band. No option edits physics but --overrides.
+void register_predict(CLI::App& app) {
+  struct Opts {
+    study::PredictOptions o;
+    std::string calibration;
+    std::optional<double> shape, shape_sd;
+    std::optional<long> seed0;
+    StudyCli study;
+  };
+  auto c = std::make_shared<Opts>();
+  CLI::App* grp = group_subcommand(app, "predict", "blind predictions with a calibrated model");
+  CLI::App* r = grp->add_subcommand("rheology", "the band {s - sd, s, s + sd} of the paste-rheology shape over "
+                                                "mixing cases, N seeds each (docs/rheology_protocol.md step 5)");
+  r->add_option("--calibration", c->calibration, "the record of `pastemix calibrate rheology` (rheology_calibration.toml)");
+  r->add_option("--shape", c->shape, "the band's centre instead of a record (family: the store's)");
+  r->add_option("--shape-sd", c->shape_sd, "the band's half-width (1 sd), with --shape");
+  r->add_option("--cases", c->o.cases, "mixing cases (default 1,4,5,6,7)")->delimiter(',');
+  r->add_option("--seeds", c->o.seeds, "seeds per value, the same at every value and case (default 3)");
+  r->add_option("--seed0", c->seed0, "first seed (default: each scene's own seed)");
+  r->add_option("--jobs", c->o.jobs, "runs at once, one thread each (default 1)");
+  r->add_option("--scenes", c->o.scenes, "folder of mixing_case<N>.toml (default datasets/scenes)");
+  r->add_option("--overrides", c->o.overrides, "file of key.path = value lines for every scene (the only physics "
+                                               "edit; stated in band.txt)");
+  r->add_option("--params", c->o.store, "the parameter store: the model's anchor (default out/lab/parameters.toml)");
+  r->add_option("--lab-h5", c->o.lab_h5, "lab.h5: the cases with a block grid are scored (default out/lab/lab.h5)");
+  r->add_option("--out", c->o.out, "output folder (default out/predict/rheology); runs/ keeps every run");
+  r->add_flag("--quiet", c->o.quiet, "no per-run lines");
+  r->add_option("--checkpoint-every", c->o.checkpoint_wall_s,
+                "wall-clock s between checkpoints of a run in progress; a rerun continues it (default 300, 0: none)")
+      ->check(CLI::NonNegativeNumber);
+  add_study_options(r, c->study);
+  r->callback([c] {
+    auto& o = c->o;
+    o.calibration = c->calibration;
+    o.shape = c->shape, o.shape_sd = c->shape_sd, o.seed0 = c->seed0;
+    if (!o.lab_h5.empty() && !std::filesystem::exists(o.lab_h5))
+      throw InputError(o.lab_h5.string(), 0, "--lab-h5", "no such file (run `pastemix lab reduce`)");
+    StudySetup st = setup_study(c->study);
+    o.ranks = st.ranks;
+    o.ledger = st.ledger.get();
+    o.task_index = c->study.task_index;
+    o.engine = lab::software_version();
+    o.resume_with = fmt::format("the same `pastemix predict rheology --out {}` command", o.out.string());
+    study::PredictResult res;
+    bool index_run = true;
+    guarded(*st.ranks, [&] {
+      res = study::predict_rheology(o);
+      index_run = false;
+    });
+    if (!index_run && o.task_index) fmt::print("task {}: every task of the study is finished; the gathering run (the same command without --task-index) "
+                 "writes the ledger and the outputs\n", *o.task_index);
+    if (index_run || o.task_index || !st.ranks->root()) return;
+    study::write_band_outputs(res, o);
+    fmt::print("{}", study::band_table(res, o));
+    fmt::print("wrote {0}/band.txt, {0}/band.csv, {0}/runs.csv\n", o.out.string());
+  });
+}
+
 }  // namespace
 
 void register_study_commands(CLI::App& app) {
@@ -322,6 +383,7 @@ void register_study_commands(CLI::App& app) {
   CLI::App* cal = group_subcommand(app, "calibrate", "calibrate an unmeasurable parameter against lab tests");
   register_rolling_resistance(cal);
   register_rheology(cal);
+  register_predict(app);
 }
 
 }  // namespace pastemix::app

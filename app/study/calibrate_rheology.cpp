@@ -83,30 +83,11 @@ struct SeedTask {
   model::SceneDoc doc;
 };
 
-// One (point, seed) run's layers (kg) from its result file OUT/runs/<hash>.h5: read back when there, else run
-// (continuing the checkpoint a kill left).
+// One (point, seed) run's layers (kg) from its result file OUT/runs/<hash>.h5 (run_kept).
 RunRecord run_seed(const model::SceneDoc& doc, const fs::path& runs, const std::string& hash,
                    const RheologyCalOptions& o, From& from) {
-  const fs::path h5 = runs / (hash + ".h5");
-  RunRecord r;
-  if (fs::exists(h5)) {
-    from = From::disk;
-  } else {
-    model::RunOptions ro;
-    ro.progress = false;
-    ro.stem = hash;
-    ro.checkpoint_wall_s = o.checkpoint_wall_s;
-    ro.resume_with = o.resume_with;
-    // A run killed part-way left its checkpoint: continue it rather than start again.
-    ro.resume = fs::exists(model::checkpoint_path(runs, hash));
-    if (ro.resume) from = From::resumed;
-    const model::Scene s = doc.load();
-    const model::RunSummary sum = model::run_scene(s, runs, ro);
-    r.wall_s = sum.wall_seconds;
-    r.work = static_cast<double>(sum.steps) * static_cast<double>(s.particles.size());
-    r.particles = s.particles.size();
-  }
-  const std::array<double, 3> l = layer_rock(h5, o.layout);
+  RunRecord r = run_kept(doc, runs, hash, o.checkpoint_wall_s, o.resume_with, from);
+  const std::array<double, 3> l = layer_rock(runs / (hash + ".h5"), o.layout);
   r.qoi = {l[0], l[1], l[2]};
   return r;
 }
@@ -162,21 +143,6 @@ void run_tasks(std::vector<CalPoint>& pts, std::vector<SeedTask>& tasks, const R
     if (p.failure.empty() && !p.runs.empty()) summarise_point(p, target);
 }
 
-long scene_seed(const model::SceneDoc& d) {
-  if (!d.has("seed")) throw InputError(d.path(), 0, "seed", "the scene needs a top-level seed (common random numbers)");
-  return std::stol(d.get("seed"));
-}
-
-double scene_solids(const model::SceneDoc& d) {
-  if (d.size("fluid") == 0) throw InputError(d.path(), 0, "fluid", "the scene has no [[fluid]]");
-  for (std::size_t k = 0; k < d.size("fluid"); ++k)
-    if (const std::string f = fmt::format("fluid.{}", k); d.has(f + ".rheology_from") && d.has(f + ".solids_fraction"))
-      return d.number(f + ".solids_fraction");
-  throw InputError(d.path(), 0, "fluid.rheology_from",
-                   "no [[fluid]] reads its rheology from the store (rheology_from + solids_fraction): the "
-                   "calibration varies the store's model, never numbers in the scene");
-}
-
 // Adds the points `shapes` (those not already there) with their seeds' scenes as tasks.
 void add_points(std::vector<CalPoint>& pts, std::vector<SeedTask>& tasks, const std::vector<double>& shapes,
                 const model::SceneDoc& base, const rh::Model& model, double cw, const RheologyCalOptions& o,
@@ -224,6 +190,45 @@ QuadFit fit_near_best(const std::vector<CalPoint>& pts) {
 }
 
 }  // namespace
+
+RunRecord run_kept(const model::SceneDoc& doc, const fs::path& runs, const std::string& hash,
+                   double checkpoint_wall_s, const std::string& resume_with, From& from) {
+  const fs::path h5 = runs / (hash + ".h5");
+  RunRecord r;
+  if (fs::exists(h5)) {
+    from = From::disk;
+    return r;
+  }
+  model::RunOptions ro;
+  ro.progress = false;
+  ro.stem = hash;
+  ro.checkpoint_wall_s = checkpoint_wall_s;
+  ro.resume_with = resume_with;
+  // A run killed part-way left its checkpoint: continue it rather than start again.
+  ro.resume = fs::exists(model::checkpoint_path(runs, hash));
+  if (ro.resume) from = From::resumed;
+  const model::Scene s = doc.load();
+  const model::RunSummary sum = model::run_scene(s, runs, ro);
+  r.wall_s = sum.wall_seconds;
+  r.work = static_cast<double>(sum.steps) * static_cast<double>(s.particles.size());
+  r.particles = s.particles.size();
+  return r;
+}
+
+long scene_seed(const model::SceneDoc& d) {
+  if (!d.has("seed")) throw InputError(d.path(), 0, "seed", "the scene needs a top-level seed (common random numbers)");
+  return std::stol(d.get("seed"));
+}
+
+double scene_solids(const model::SceneDoc& d) {
+  if (d.size("fluid") == 0) throw InputError(d.path(), 0, "fluid", "the scene has no [[fluid]]");
+  for (std::size_t k = 0; k < d.size("fluid"); ++k)
+    if (const std::string f = fmt::format("fluid.{}", k); d.has(f + ".rheology_from") && d.has(f + ".solids_fraction"))
+      return d.number(f + ".solids_fraction");
+  throw InputError(d.path(), 0, "fluid.rheology_from",
+                   "no [[fluid]] reads its rheology from the store (rheology_from + solids_fraction): the "
+                   "calibration varies the store's model, never numbers in the scene");
+}
 
 model::SceneDoc with_rheology(const model::SceneDoc& base, double tau_y, double eta_B, double density) {
   model::SceneDoc d = base;

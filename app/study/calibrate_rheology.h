@@ -35,6 +35,7 @@
 #include "analysis/maps/block_grid.h"
 #include "app/study/ledger.h"
 #include "app/study/ranks.h"
+#include "app/study/tasks.h"
 #include "lab/rheology/paste_rheology.h"
 #include "model/scene_doc.h"
 
@@ -107,6 +108,15 @@ struct RheologyCalResult {
   std::string table;
 };
 
+// Runs `doc` into RUNS/<hash>.h5 (model::run_scene, checkpoints every `checkpoint_wall_s` of wall clock)
+// unless that file is already there (from = From::disk, nothing run); continues RUNS/<hash>.checkpoint.h5
+// when a kill left one (from = From::resumed). The record has the cost, no QoI.
+RunRecord run_kept(const model::SceneDoc& doc, const std::filesystem::path& runs, const std::string& hash,
+                   double checkpoint_wall_s, const std::string& resume_with, From& from);
+// The scene's top-level seed (InputError naming the scene when absent: common random numbers need it).
+long scene_seed(const model::SceneDoc& d);
+// C_w of the [[fluid]] that reads its rheology from the store (InputError when none does).
+double scene_solids(const model::SceneDoc& d);
 // The scene with every [[fluid]] that reads `rheology_from` given explicit values instead.
 model::SceneDoc with_rheology(const model::SceneDoc& base, double tau_y, double eta_B, double density);
 // J and the per-layer relative errors.
