@@ -47,16 +47,8 @@ void run_points(const model::SceneDoc& base, const RollingOptions& o, const std:
                       return record_of(run_qoi_task(doc, "repose_angle", files, from));
                     }});
   }
-  StudyIo io;
-  io.study = "calibrate rolling-resistance";
-  io.engine = o.engine;
-  io.records = dir;
-  io.ledger = o.ledger;
-  io.jobs = o.jobs;
-  io.ranks = o.ranks;
-  io.task_index = o.task_index;
-  std::map<std::string, std::size_t> index;
-  for (std::size_t i = 0; i < list.size(); ++i) index[list[i].key] = i;
+  StudyIo io = study_io(o, "calibrate rolling-resistance", dir);
+  const auto index = index_by_key(list);
   if (!o.quiet)
     io.on_done = [&](const Task& t, const RunRecord& rec, From from) {
       const RollingRun& run = runs[index.at(t.key)];

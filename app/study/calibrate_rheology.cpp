@@ -106,13 +106,7 @@ void run_tasks(std::vector<CalPoint>& pts, std::vector<SeedTask>& tasks, const R
     list.push_back({sr.hash, fmt::format("shape {:.10g} seed {}", pts[t.point].shape, sr.seed),
                     [&t, &o, runs, hash = sr.hash](From& from) { return run_seed(t.doc, runs, hash, o, from); }});
   }
-  StudyIo io;
-  io.study = fmt::format("calibrate rheology case {}", o.case_id);
-  io.engine = o.engine;
-  io.ledger = o.ledger;
-  io.jobs = o.jobs;
-  io.ranks = o.ranks;
-  io.task_index = o.task_index;
+  StudyIo io = study_io(o, fmt::format("calibrate rheology case {}", o.case_id));
   if (!o.quiet)
     io.on_done = [&](const Task& t, const RunRecord& rec, From from) {
       const auto [point, seed] = where.at(t.key);

@@ -217,15 +217,8 @@ PredictResult predict_rheology(const PredictOptions& o) {
                       return rec;
                     }});
   }
-  StudyIo io;
-  io.study = kQoi;
-  io.engine = o.engine;
-  io.ledger = o.ledger;
-  io.jobs = o.jobs;
-  io.ranks = o.ranks;
-  io.task_index = o.task_index;
-  std::map<std::string, std::size_t> index;
-  for (std::size_t i = 0; i < list.size(); ++i) index[list[i].key] = i;
+  StudyIo io = study_io(o, kQoi);
+  const auto index = index_by_key(list);
   if (!o.quiet)
     io.on_done = [&](const Task& t, const RunRecord& rec, From from) {
       if (rec.failed) {

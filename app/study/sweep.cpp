@@ -290,16 +290,8 @@ void run_sweep_tasks(std::vector<SweepRun>& tasks, const SweepOptions& o, const 
     list.push_back({files.stem, fmt::format("{} = {:.10g} seed {}", o.vary, value, t.seed),
                     [&t, &o, files](From& from) { return record_of(run_qoi_task(t.doc, o.qoi, files, from)); }});
   }
-  StudyIo io;
-  io.study = fmt::format("sweep {} {}", o.vary, o.qoi);
-  io.engine = o.engine;
-  io.records = o.runs;
-  io.ledger = o.ledger;
-  io.jobs = o.jobs;
-  io.ranks = o.ranks;
-  io.task_index = o.task_index;
-  std::map<std::string, std::size_t> index;
-  for (std::size_t i = 0; i < list.size(); ++i) index[list[i].key] = i;
+  StudyIo io = study_io(o, fmt::format("sweep {} {}", o.vary, o.qoi), o.runs);
+  const auto index = index_by_key(list);
   if (!o.quiet)
     io.on_done = [&](const study::Task& st, const RunRecord& rec, From f) {
       const SweepRun& t = tasks[index.at(st.key)];

@@ -24,6 +24,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -57,6 +58,28 @@ struct StudyIo {
   // Rank 0, once per task as it is finished or found (under a lock; for the per-run line).
   std::function<void(const Task&, const RunRecord&, From)> on_done;
 };
+
+// The StudyIo of a command's options (any options struct with engine, ledger, jobs, ranks and task_index:
+// SweepOptions, RollingOptions, RheologyCalOptions, PredictOptions), so that the four commands fill it alike.
+template <class Options>
+StudyIo study_io(const Options& o, std::string study, std::filesystem::path records = {}) {
+  StudyIo io;
+  io.study = std::move(study);
+  io.engine = o.engine;
+  io.records = std::move(records);
+  io.ledger = o.ledger;
+  io.jobs = o.jobs;
+  io.ranks = o.ranks;
+  io.task_index = o.task_index;
+  return io;
+}
+
+// Each task's position in its list, by key (for the per-run lines of on_done).
+inline std::map<std::string, std::size_t> index_by_key(const std::vector<Task>& list) {
+  std::map<std::string, std::size_t> index;
+  for (std::size_t i = 0; i < list.size(); ++i) index[list[i].key] = i;
+  return index;
+}
 
 struct TaskCounts {
   int ran = 0, resumed = 0, disk = 0, record = 0, ledger = 0;
