@@ -15,6 +15,7 @@
 
 #include "app/study/sweep.h"
 #include "base/error.h"
+#include "tests/fresh_dir.h"
 #include "tests/run_command.h"
 
 namespace fs = std::filesystem;
@@ -24,18 +25,10 @@ using namespace pastemix::app::study;
 namespace {
 
 fs::path fresh(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / fmt::format("pastemix_ledger_{}_{}", name, getpid());
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
+  return test::fresh_dir(fs::temp_directory_path() / fmt::format("pastemix_ledger_{}_{}", name, getpid()));
 }
 
-std::string slurp(const fs::path& p) {
-  std::ifstream f(p);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
+std::string slurp(const fs::path& p) { return test::file_text(p); }
 
 std::string error_of(const fs::path& p) {
   try {

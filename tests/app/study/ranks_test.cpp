@@ -19,6 +19,7 @@
 #include "base/params.h"
 #include "lab/parameters_toml.h"
 #include "lab/rheology/paste_rheology.h"
+#include "tests/fresh_dir.h"
 #include "tests/run_command.h"
 
 namespace fs = std::filesystem;
@@ -29,18 +30,10 @@ namespace rh = pastemix::lab::rheology;
 namespace {
 
 fs::path fresh(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / fmt::format("pastemix_ranks_{}_{}", name, getpid());
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
+  return test::fresh_dir(fs::temp_directory_path() / fmt::format("pastemix_ranks_{}_{}", name, getpid()));
 }
 
-std::string slurp(const fs::path& p) {
-  std::ifstream f(p);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
+std::string slurp(const fs::path& p) { return test::file_text(p); }
 
 bool have_mpirun() { return std::system("command -v mpirun >/dev/null 2>&1") == 0; }
 

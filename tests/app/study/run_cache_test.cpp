@@ -19,6 +19,7 @@
 
 #include "app/study/sweep.h"
 #include "base/error.h"
+#include "tests/fresh_dir.h"
 #include "tests/run_command.h"
 
 namespace fs = std::filesystem;
@@ -44,12 +45,7 @@ SweepOptions hertz_sweep(const fs::path& runs) {
   return o;
 }
 
-std::string slurp(const fs::path& p) {
-  std::ifstream f(p);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
+std::string slurp(const fs::path& p) { return test::file_text(p); }
 
 std::size_t records_in(const fs::path& dir) {
   std::size_t n = 0;

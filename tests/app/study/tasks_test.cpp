@@ -21,6 +21,7 @@
 #include <doctest/doctest.h>
 #include <fmt/format.h>
 
+#include "tests/fresh_dir.h"
 #include "tests/run_command.h"
 
 namespace fs = std::filesystem;
@@ -29,18 +30,10 @@ using namespace pastemix;
 namespace {
 
 fs::path fresh(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / fmt::format("pastemix_tasks_{}_{}", name, getpid());
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
+  return test::fresh_dir(fs::temp_directory_path() / fmt::format("pastemix_tasks_{}_{}", name, getpid()));
 }
 
-std::string slurp(const fs::path& p) {
-  std::ifstream f(p);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
+std::string slurp(const fs::path& p) { return test::file_text(p); }
 
 std::size_t lines_in(const fs::path& p) {
   const std::string s = slurp(p);
