@@ -7,12 +7,13 @@
 #include <fmt/format.h>
 
 #include "lab/ingest/ingest.h"
+#include "pastemix_git.h"  // generated: PASTEMIX_GIT (cmake/git_version.cmake)
 
 namespace pastemix::lab {
 
 std::string software_version() {
 #ifdef PASTEMIX_VERSION
-  return std::string("pastemix ") + PASTEMIX_VERSION;
+  return std::string("pastemix ") + PASTEMIX_VERSION + " (" + PASTEMIX_GIT + ")";
 #else
   return "pastemix (unknown version)";
 #endif
