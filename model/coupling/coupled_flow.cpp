@@ -97,22 +97,14 @@ CoupledFlow::Start CoupledFlow::drag_at_start(const CoupledParticles& p) const {
   return s0;
 }
 
-// One DEM step of particle i: the other forces, the velocity-dependent drag implicit against the frozen u_p
-// (backward Euler, v' = (v + a dt + (beta dt / m) u_p) / (1 + beta dt / m): stable at any beta dt / m, and it
-// lands on the terminal slip), the yield stick, the drift. The drag impulses are summed into sub (J_sub).
-void CoupledFlow::dem_step(CoupledParticles& p, std::size_t i, double dt, int steps, const ExtraForce& extra,
-                           const Start& s0, std::vector<Vec>& sub, CycleStats& st) const {
-  const flow::Grid& g = flow_.grid();
+bool CoupledFlow::drag_step(const CoupledParticles& p, std::size_t i, Vec& v, const Vec& F, double dt, const Start& s0,
+                            Vec& J) const {
   const Vec& u = s0.u[i];
-  Vec F{};
-  const Vec fx = extra ? extra(i, p) : Vec{};
-  for (int c = 0; c < 3; ++c) F[c] = p.m[i] * s_.gravity[c] + pending_[i][c] / (steps * dt) + fx[c];
-  Vec& v = p.v[i];
   const double a = s0.beta[i] * dt / p.m[i];
   for (int c = 0; c < 3; ++c) {
     const double free = v[c] + F[c] / p.m[i] * dt;
     const double next = (free + a * u[c]) / (1.0 + a);
-    sub[i][c] += p.m[i] * (next - free);
+    J[c] += p.m[i] * (next - free);
     v[c] = next;
   }
   // The yield part in the same update (as fluid/drag_kick.h): it removes at most F_y dt / (1 + a) of momentum
@@ -121,16 +113,28 @@ void CoupledFlow::dem_step(CoupledParticles& p, std::size_t i, double dt, int st
   const double bound = s0.share[i] * p.drag[i].rest * dt / (1.0 + a);  // N s
   const Vec w{v[0] - u[0], v[1] - u[1], v[2] - u[2]};
   const double speed = std::hypot(w[0], w[1], w[2]);
-  if (bound > 0.0 && speed > 0.0) {
-    const bool stick = p.m[i] * speed <= bound;
-    const double scale = stick ? p.m[i] : bound / speed;
-    st.stuck_steps += stick ? 1 : 0;
-    for (int c = 0; c < 3; ++c) {
-      const double J = -scale * w[c];
-      sub[i][c] += J;
-      v[c] += J / p.m[i];
-    }
+  if (!(bound > 0.0 && speed > 0.0)) return false;
+  const bool stick = p.m[i] * speed <= bound;
+  const double scale = stick ? p.m[i] : bound / speed;
+  for (int c = 0; c < 3; ++c) {
+    const double Jc = -scale * w[c];
+    J[c] += Jc;
+    v[c] += Jc / p.m[i];
   }
+  return stick;
+}
+
+// One DEM step of particle i: the other forces, the velocity-dependent drag implicit against the frozen u_p
+// (backward Euler, v' = (v + a dt + (beta dt / m) u_p) / (1 + beta dt / m): stable at any beta dt / m, and it
+// lands on the terminal slip), the yield stick, the drift. The drag impulses are summed into sub (J_sub).
+void CoupledFlow::dem_step(CoupledParticles& p, std::size_t i, double dt, int steps, const ExtraForce& extra,
+                           const Start& s0, std::vector<Vec>& sub, CycleStats& st) const {
+  const flow::Grid& g = flow_.grid();
+  Vec F{};
+  const Vec fx = extra ? extra(i, p) : Vec{};
+  for (int c = 0; c < 3; ++c) F[c] = p.m[i] * s_.gravity[c] + pending_[i][c] / (steps * dt) + fx[c];
+  Vec& v = p.v[i];
+  st.stuck_steps += drag_step(p, i, v, F, dt, s0, sub[i]) ? 1 : 0;
   for (int c = 0; c < 3; ++c) {
     double& x = p.x[i][c];
     x += v[c] * dt;
