@@ -30,7 +30,7 @@ namespace pastemix::model {
 namespace {
 
 // Bumped whenever a stored member is added, removed or reordered.
-constexpr char kMagic[] = "pastemix-checkpoint-v2";
+constexpr char kMagic[] = "pastemix-checkpoint-v3";
 
 class Bytes {
  public:
@@ -113,6 +113,20 @@ struct CheckpointAccess {
     io(wet);
     if (wet != (field != nullptr)) throw std::logic_error("checkpoint: fluid state and scene disagree");
     if (wet) fluid_state(io, *field);
+    // The moving paste (dynamics = "flow"): its state as the coupling's own bytes (fluid/flow_coupling.h), after
+    // the particles, which its restore() reads.
+    auto& flow = std::get<FlowForces>(w.forces_).coupling;
+    bool flowing = flow != nullptr;
+    io(flowing);
+    if (flowing != (flow != nullptr)) throw std::logic_error("checkpoint: flow state and scene disagree");
+    if (!flowing) return;
+    if constexpr (std::is_const_v<W>) {
+      io(flow->save());
+    } else {
+      std::vector<char> bytes;
+      io(bytes);
+      flow->restore(bytes, w.p_);
+    }
   }
   template <class IO, class F>
   static void fluid_state(IO& io, F& f) {
@@ -131,7 +145,7 @@ struct CheckpointAccess {
   template <class IO, class O>
   static void output_state(IO& io, O& o) {
     io(o.snap_times_), io(o.snap_counts_), io(o.t_), io(o.ke_), io(o.rot_), io(o.pot_), io(o.el_), io(o.npair_);
-    io(o.nwall_), io(o.surface_);
+    io(o.nwall_), io(o.surface_), io(o.paste_volume_);
   }
   // The pair list's thread partition is not stored: it is made again from the positions of the last
   // rebuild, for this run's thread count (the engine's bits do not depend on the partition).

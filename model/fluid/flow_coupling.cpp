@@ -2,6 +2,9 @@
 #include "model/fluid/flow_coupling.h"
 
 #include <cmath>
+#include <cstring>
+#include <stdexcept>
+#include <type_traits>
 #include <limits>
 
 #include <fmt/format.h>
@@ -133,6 +136,8 @@ FlowCoupling::~FlowCoupling() = default;
 const FluidRegion& FlowCoupling::region() const { return s_->region; }
 const flow::FlowSolver& FlowCoupling::solver() const { return s_->solver; }
 double FlowCoupling::paste_volume() const { return s_->solver.paste_volume(); }
+long FlowCoupling::flow_steps() const { return s_->solver.totals().steps; }
+double FlowCoupling::solver_time() const { return s_->solver.time(); }
 
 void FlowCoupling::start(const Particles& p) {
   auto& cp = s_->p;
@@ -221,6 +226,109 @@ void FlowCoupling::renumber(const std::vector<std::uint32_t>& map, std::size_t c
   members_.clear();
   for (std::size_t a = 0; a < member_.size(); ++a)
     if (member_[a]) members_.push_back(static_cast<long>(a));
+}
+
+namespace {
+
+// Raw bytes of trivially copyable values and vectors of them, in a fixed order (as model/checkpoint.cpp does).
+struct Pack {
+  std::vector<char> out;
+  template <class T>
+  void put(const T& v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    const auto* b = reinterpret_cast<const char*>(&v);
+    out.insert(out.end(), b, b + sizeof(T));
+  }
+  template <class T>
+  void put(const std::vector<T>& v) {
+    put(static_cast<std::uint64_t>(v.size()));
+    const auto* b = reinterpret_cast<const char*>(v.data());
+    out.insert(out.end(), b, b + v.size() * sizeof(T));
+  }
+  void put(const flow::Faces& f) {
+    for (const auto& c : f) put(c);
+  }
+};
+
+struct Unpack {
+  const std::vector<char>& in;
+  std::size_t at = 0;
+  void take(void* to, std::size_t n) {
+    if (n > in.size() - at) throw std::invalid_argument("flow coupling: truncated state");
+    std::memcpy(to, in.data() + at, n);
+    at += n;
+  }
+  template <class T>
+  void put(T& v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    take(&v, sizeof(T));
+  }
+  template <class T>
+  void put(std::vector<T>& v) {
+    std::uint64_t n = 0;
+    put(n);
+    if (n > (in.size() - at) / sizeof(T)) throw std::invalid_argument("flow coupling: a length past the end");
+    v.resize(n);
+    take(v.data(), n * sizeof(T));
+  }
+  void put(flow::Faces& f) {
+    for (auto& c : f) put(c);
+  }
+};
+
+// Both directions in one order: io.put(x) writes or reads x.
+template <class IO, class S, class C>
+void pack_state(IO& io, S& st, C& coupled, std::vector<char>& member, std::vector<long>& list, long& step, long& cycles) {
+  io.put(member), io.put(list), io.put(step), io.put(cycles);
+  io.put(st.p.x), io.put(st.p.v), io.put(st.start.u), io.put(st.start.share), io.put(st.start.beta);
+  io.put(st.impulse), io.put(st.last);
+  io.put(coupled.x_flow), io.put(coupled.pending);
+  auto& f = st.flow;
+  io.put(f.u), io.put(f.continuity_impulse), io.put(f.pressure_impulse), io.put(f.p), io.put(f.alpha), io.put(f.mu);
+  io.put(f.eps), io.put(f.eps_next), io.put(f.with_rate), io.put(f.pressure_ready), io.put(f.t), io.put(f.last);
+  io.put(f.totals);
+}
+
+}  // namespace
+
+std::vector<char> FlowCoupling::save() const {
+  Pack io;
+  io.put(started_);
+  if (!started_) return io.out;
+  struct {
+    coupling::CoupledParticles p;
+    coupling::CoupledFlow::Start start;
+    std::vector<Vec> impulse;
+    coupling::CycleStats last;
+    flow::FlowSolver::State flow;
+  } st{s_->p, s_->start, s_->impulse, s_->last, s_->solver.state()};
+  coupling::CoupledFlow::State c = s_->coupled.state();
+  std::vector<char> member = member_;
+  std::vector<long> list = members_;
+  long step = step_in_cycle_, cycles = cycles_;
+  pack_state(io, st, c, member, list, step, cycles);
+  return io.out;
+}
+
+void FlowCoupling::restore(const std::vector<char>& bytes, const Particles& p) {
+  Unpack io{bytes};
+  io.put(started_);
+  if (!started_) return;
+  start(p);  // the per-particle constants (diameters, masses, drag laws) of the restored particles
+  struct {
+    coupling::CoupledParticles p;
+    coupling::CoupledFlow::Start start;
+    std::vector<Vec> impulse;
+    coupling::CycleStats last;
+    flow::FlowSolver::State flow;
+  } st;
+  coupling::CoupledFlow::State c;
+  pack_state(io, st, c, member_, members_, step_in_cycle_, cycles_);
+  if (io.at != bytes.size()) throw std::invalid_argument("flow coupling: trailing bytes in the state");
+  s_->p.x = std::move(st.p.x), s_->p.v = std::move(st.p.v);
+  s_->start = std::move(st.start), s_->impulse = std::move(st.impulse), s_->last = st.last;
+  s_->coupled.restore(std::move(c));
+  s_->solver.restore(std::move(st.flow));
 }
 
 FlowFields FlowCoupling::fields() const {

@@ -70,6 +70,13 @@ class FlowCoupling {
   // The half kick h (s) of member a under F (N: contacts + m g): the paste's drag and pending pressure force.
   Vec3 kick(long a, const Vec3& v, const Vec3& F, double mass, double h) const;
 
+  // The whole dynamic state as bytes (model/checkpoint.cpp), and back: the flow solver's fields, the coupling's
+  // pending impulses, the cycle's drag and impulses, the members. restore() takes the World's particles as
+  // restored (their radii and masses give each one's drag law again, the same values): a resumed run gives the
+  // same bits as one that never stopped. InputError-free: a damaged state throws std::invalid_argument.
+  std::vector<char> save() const;
+  void restore(const std::vector<char>& bytes, const Particles& p);
+
   // The World renumbered its particles (map: old -> new dense index; kGone entries were removed).
   void renumber(const std::vector<std::uint32_t>& map, std::size_t count);
 
@@ -78,6 +85,8 @@ class FlowCoupling {
   FlowFields fields() const;
   double paste_volume() const;  // m3
   long cycles() const { return cycles_; }
+  long flow_steps() const;    // the flow solver's steps so far
+  double solver_time() const;  // s, the flow's time (the last cycle's end)
 
  private:
   friend struct pastemix::model::CheckpointAccess;  // model/checkpoint.cpp: saves and restores the state
