@@ -85,7 +85,11 @@ CoupledFlow::Start CoupledFlow::drag_at_start(const CoupledParticles& p) const {
   s0.u = exchange_.fluid_velocity({p.x, p.d, p.m, none, none}, flow_.velocity(), mass0, &mask0, s0.share);
   const std::vector<double>& eps_now = flow_.fluid_fraction();
   for (std::size_t i = 0; i < n; ++i) {
-    if (s0.share[i] == 0.0) continue;
+    // A share below 0 is the round-off of a folded kernel's weights (~1e-18) on faces the mask leaves: none.
+    if (!(s0.share[i] > 0.0)) {
+      s0.share[i] = 0.0;
+      continue;
+    }
     const Stencil s = stencil(g, p.x[i], p.d[i], s_.width_factor);
     const double seen = eps_now.empty() ? 1.0 : interpolate(g, s, eps_now);
     const double eps = std::min(1.0, seen + own_solid_fraction(g, s, p.d[i]));
