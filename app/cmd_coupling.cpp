@@ -13,6 +13,7 @@
 #include "model/coupling/piston.h"
 #include "model/coupling/sphere.h"
 #include "model/fluid/flow_piston.h"
+#include "model/fluid/flow_stability.h"
 
 namespace pastemix::app {
 
@@ -110,6 +111,27 @@ void register_coupling_commands(CLI::App& app) {
                s.cell, o->toy ? " (toy: no d eps_f/dt)" : "", 1e3 * r.rise_measured, 1e3 * r.rise_expected,
                r.relative_error, r.volume_error, r.alpha_min, r.alpha_max, r.seconds);
   });
+
+  for (const char* name : {"bed", "stream"}) {
+    CLI::App* st = cpl->add_subcommand(name, std::string(name) == "bed"
+                                                 ? "a packed bed at rest in the paste: no energy growth, no NaN"
+                                                 : "a dense stream falling through air into the paste: no energy growth, no NaN");
+    auto ss = std::make_shared<model::fluid::StabilitySettings>();
+    ss->name = name;
+    st->add_option("--layers", ss->layers, "bed: spheres per side; stream: spheres / 10 (default 4)")->check(CLI::PositiveNumber);
+    st->add_option("--relaxations", ss->relaxations, "DEM step over the drag relaxation time (default 10)")->check(CLI::PositiveNumber);
+    st->add_option("--intervals", ss->interval, "DEM steps per flow interval (default 1)")->check(CLI::PositiveNumber);
+    st->add_option("--time", ss->time, "simulated time, s (default 0.02)")->check(CLI::PositiveNumber);
+    st->add_option("--cell", ss->cell, "cubic cell, m (default 0.01)")->check(CLI::PositiveNumber);
+    st->callback([ss] {
+      const model::fluid::StabilityResult r = model::fluid::run_stability(*ss);
+      fmt::print("{} {} spheres of {:g} mm, DEM step {:.3g} s = {:g} tau (tau {:.3g} s, paste {:.4g} Pa s), interval {}: "
+                 "energy growth {:.3g} J = {:.3g} of the budget K(0) + released (<= 0: none; K(end) {:.3g} J, released {:.3g} J), max sphere speed {:.3g} m/s, "
+                 "paste volume error {:.3g}, {} steps, {} cycles, {:.2f} s\n",
+                 ss->name, r.spheres, 1e3 * ss->diameter, r.dt, ss->relaxations, r.tau, r.viscosity, ss->interval,
+                 r.growth, r.growth / r.budget, r.kinetic_end, r.released_end, r.max_speed, r.paste_volume_error, r.steps, r.cycles, r.seconds);
+    });
+  }
 
   CLI::App* dem = cpl->add_subcommand("piston-dem", "the piston's 27 spheres as DEM particles through the engine "
                                                     "(a dynamics = \"flow\" scene): the surface rise");

@@ -8,7 +8,6 @@
 #include <limits>
 
 #include <fmt/format.h>
-#include <omp.h>
 
 #include "base/units.h"
 #include "model/coupling/coupled_flow.h"
@@ -165,23 +164,9 @@ void FlowCoupling::begin_cycle(const Particles& p) {
   step_in_cycle_ = 0;
 }
 
-namespace {
-
-// The flow and the coupling on the calling thread alone, for the scope: inside the World's team they are serial
-// anyway (no nested parallelism), and a World of one thread would otherwise give their loops every core, whose
-// barriers on a grid of a few thousand cells cost more than the loops (measured: 300 times slower at 432 cells
-// on 2 loaded cores), and whose bits would then depend on the thread count.
-struct OneThread {
-  int saved = omp_get_max_threads();
-  OneThread() { omp_set_num_threads(1); }
-  ~OneThread() { omp_set_num_threads(saved); }
-};
-
-}  // namespace
-
 const std::vector<long>& FlowCoupling::prepare(Particles& p) {
   changed_.clear();
-  const OneThread one;
+  const OneThread one;  // (flow_coupling.h)
   if (!started_) {
     start(p);
     begin_cycle(p);

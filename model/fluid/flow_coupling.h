@@ -26,6 +26,8 @@
 // flow region).
 #pragma once
 
+#include <omp.h>
+
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -51,6 +53,19 @@ struct FlowFields {
   std::array<double, 3> h{}, origin{};  // m
   std::vector<double> paste_fraction, fluid_fraction, pressure;  // -, -, Pa
   std::vector<double> velocity;    // m/s, cells x 3 (face means)
+};
+
+// The flow and the coupling on the calling thread alone, for the scope: inside the World's team they are serial
+// anyway (no nested parallelism), and a World of one thread would otherwise give the flow solver's loops every
+// core, whose barriers on a grid of a few thousand cells cost more than the loops (measured: 300 times slower at
+// 432 cells on 2 loaded cores), and whose bits would then depend on the thread count. The validation cases
+// (flow_piston.h, flow_stability.h) run in one for their own reads of the flow (energies, volumes).
+struct OneThread {
+  int saved = omp_get_max_threads();
+  OneThread() { omp_set_num_threads(1); }
+  ~OneThread() { omp_set_num_threads(saved); }
+  OneThread(const OneThread&) = delete;
+  OneThread& operator=(const OneThread&) = delete;
 };
 
 class FlowCoupling {

@@ -47,6 +47,7 @@ std::string piston_scene(const DemPistonSettings& s) {
 }  // namespace
 
 DemPistonResult run_dem_piston(const DemPistonSettings& s) {
+  const OneThread one;  // a validation case of one thread (flow_coupling.h)
   const auto t0 = std::chrono::steady_clock::now();
   const Scene scene = parse_scene(piston_scene(s), "piston (model/fluid/flow_piston.cpp)");
   World w = make_world(scene);
