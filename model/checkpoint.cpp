@@ -21,6 +21,7 @@
 #include "base/staged_output.h"
 #include "model/output.h"
 #include "model/parallel.h"
+#include "model/state_bytes.h"
 #include "model/scene.h"
 #include "model/stop_rule.h"
 #include "model/world.h"
@@ -31,60 +32,6 @@ namespace {
 
 // Bumped whenever a stored member is added, removed or reordered.
 constexpr char kMagic[] = "pastemix-checkpoint-v3";
-
-class Bytes {
- public:
-  template <class T>
-  void put(const T& v) {
-    static_assert(std::is_trivially_copyable_v<T>);
-    const auto* b = reinterpret_cast<const char*>(&v);
-    buf_.insert(buf_.end(), b, b + sizeof(T));
-  }
-  template <class T>
-  void put(const std::vector<T>& v) {
-    static_assert(std::is_trivially_copyable_v<T>);
-    put(static_cast<std::uint64_t>(v.size()));
-    const auto* b = reinterpret_cast<const char*>(v.data());
-    buf_.insert(buf_.end(), b, b + v.size() * sizeof(T));
-  }
-  void put(const std::vector<bool>&) = delete;
-  const std::vector<char>& data() const { return buf_; }
-
- private:
-  std::vector<char> buf_;
-};
-
-class Reader {
- public:
-  Reader(std::span<const std::uint8_t> data, std::string path) : data_(data), path_(std::move(path)) {}
-  template <class T>
-  void get(T& v) {
-    static_assert(std::is_trivially_copyable_v<T>);
-    take(&v, sizeof(T));
-  }
-  template <class T>
-  void get(std::vector<T>& v) {
-    std::uint64_t n = 0;
-    get(n);
-    if (n > (data_.size() - at_) / std::max<std::size_t>(sizeof(T), 1)) damaged("a length past the end");
-    v.resize(n);
-    take(v.data(), n * sizeof(T));
-  }
-  bool done() const { return at_ == data_.size(); }
-  [[noreturn]] void damaged(const std::string& why) const {
-    throw InputError(path_, 0, "/checkpoint/state", fmt::format("damaged checkpoint ({}): start the run again", why));
-  }
-
- private:
-  void take(void* out, std::size_t n) {
-    if (n > data_.size() - at_) damaged("truncated");
-    std::memcpy(out, data_.data() + at_, n);
-    at_ += n;
-  }
-  std::span<const std::uint8_t> data_;
-  std::string path_;
-  std::size_t at_ = 0;
-};
 
 // The members in one fixed order, for both directions: io(x) is put(x) or get(x).
 template <class IO>
@@ -170,7 +117,7 @@ std::string sizes_tag() {
 }
 
 std::vector<char> save_state(const World& world, const RestMonitor& rest, const RunOutput& out) {
-  Bytes b;
+  StateBytes b;
   auto io = [&](const auto& v) { b.put(v); };
   const std::string tag = sizes_tag();
   b.put(std::vector<char>(tag.begin(), tag.end()));
@@ -230,7 +177,7 @@ CheckpointInfo resume_from_checkpoint(const std::filesystem::path& path, const S
                                    hash, here));
     state = r.read_bytes("/checkpoint/state");
   }
-  Reader rd(state, path.string());
+  StateReader rd(state, path.string());
   std::vector<char> tag;
   rd.get(tag);
   if (std::string(tag.begin(), tag.end()) != sizes_tag())

@@ -396,6 +396,11 @@ long World::passes(long n, double h, bool initial, double& moved2) {
         run_lane<Law, Roll>(table, rolling, batch);
       },
       laws_, rolling_);
+  // A pass's failure inside the region (it cannot leave it: forces/flow_forces.h) stops the run here.
+  for_each_pass(forces_, [](const auto& pass) {
+    if constexpr (requires { pass.rethrow(); })
+      if (pass.active()) pass.rethrow();
+  });
   pairs_.parity = batch.parity_end;
   pairs_.sync_cross();
   t_ = batch.t_end;

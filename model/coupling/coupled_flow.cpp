@@ -158,15 +158,29 @@ void CoupledFlow::flow_interval(CoupledParticles& p, double T, const Start& s0, 
   const std::vector<double> eps_start = flow_.fluid_fraction().empty() ? std::vector<double>(g.cell_count(), 1.0)
                                                                        : flow_.fluid_fraction();
   const std::vector<double> eps_end = fluid_fraction(p);
-  const int parts = std::max(1, static_cast<int>(std::ceil(T / flow_.next_time_step() * (1.0 - 1e-12))));
+  // Equal sub-steps from the flow's CFL bound at the start; if the exchange has sped the fluid up so that the
+  // next sub-step would break the bound, the rest of the interval is split again from there (f0: the fraction
+  // done at that split). Without a split the sub-steps are T / parts, r = j / parts, as they always were.
+  auto split = [&](double left) {
+    return std::max(1, static_cast<int>(std::ceil(left / flow_.next_time_step() * (1.0 - 1e-12))));
+  };
+  int parts = split(T);
+  double f0 = 0.0;
+  int j0 = 0;  // the sub-step index at the last split
   const ExchangeParticles view{p.x, p.d, p.m, s0.beta, none};
   std::vector<Vec> impulse, reference = s0.u;
   flow::Faces at_start, at_end;  // N s/m3: the pressure impulses, split by the positions their fluid mass had
   for (int c = 0; c < 3; ++c) at_start[c].assign(g.face_count(c), 0.0), at_end[c].assign(g.face_count(c), 0.0);
-  for (int j = 0; j < parts; ++j) {
-    const double r0 = static_cast<double>(j) / parts, r1 = static_cast<double>(j + 1) / parts;
+  for (int j = 0; j < j0 + parts; ++j) {
+    if (j > 0 && (1.0 - f0) * T / parts > flow_.next_time_step()) {
+      f0 = f0 + (1.0 - f0) * (j - j0) / parts;
+      j0 = j;
+      parts = split((1.0 - f0) * T);
+    }
+    const double r0 = f0 + (1.0 - f0) * (j - j0) / parts, r1 = f0 + (1.0 - f0) * (j - j0 + 1) / parts;
     std::vector<double> eps(eps_end);
-    if (j + 1 < parts)
+    const bool last = j + 1 == j0 + parts;
+    if (!last)
       for (std::size_t c = 0; c < eps.size(); ++c) eps[c] = eps_start[c] + r1 * (eps_end[c] - eps_start[c]);
     flow_.set_next_fluid_fraction(std::move(eps));
     // The books of the exchange: the faces' momentum change inside the hooks against the particles' impulses.
@@ -189,11 +203,11 @@ void CoupledFlow::flow_interval(CoupledParticles& p, double T, const Start& s0, 
       book(before, u, mass, impulse);
       // The next sub-step's change is measured from where this one left the fluid at the particles.
       std::vector<double> unused;
-      if (j + 1 < parts) reference = exchange_.fluid_velocity(view, u, mass, &mask, unused);
+      if (!last) reference = exchange_.fluid_velocity(view, u, mass, &mask, unused);
     };
     flow_.set_exchange(react, correct);
     try {
-      flow_.step(T / parts);
+      flow_.step((1.0 - f0) * T / parts);
     } catch (...) {
       flow_.set_exchange({});
       throw;

@@ -2,9 +2,6 @@
 #include "model/fluid/flow_coupling.h"
 
 #include <cmath>
-#include <cstring>
-#include <stdexcept>
-#include <type_traits>
 #include <limits>
 
 #include <fmt/format.h>
@@ -13,6 +10,7 @@
 #include "model/coupling/coupled_flow.h"
 #include "model/flow/bingham.h"
 #include "model/flow/solver.h"
+#include "model/state_bytes.h"
 
 namespace pastemix::model::fluid {
 
@@ -166,13 +164,24 @@ void FlowCoupling::begin_cycle(const Particles& p) {
 
 const std::vector<long>& FlowCoupling::prepare(Particles& p) {
   changed_.clear();
+  if (failure_) return changed_;
   const OneThread one;  // (flow_coupling.h)
+  try {
+    cycle(p);
+  } catch (...) {
+    failure_ = std::current_exception();
+    changed_.clear();
+  }
+  return changed_;
+}
+
+void FlowCoupling::cycle(Particles& p) {
   if (!started_) {
     start(p);
     begin_cycle(p);
-    return changed_;
+    return;
   }
-  if (++step_in_cycle_ < s_->region.coupling_interval) return changed_;
+  if (++step_in_cycle_ < s_->region.coupling_interval) return;
   // The cycle ends: its flow interval with the positions the DEM reached, then the exchange's change of the
   // particles' velocities (the fluid's own change, implicit in both phases) into the World.
   auto& cp = s_->p;
@@ -187,7 +196,6 @@ const std::vector<long>& FlowCoupling::prepare(Particles& p) {
   }
   ++cycles_;
   begin_cycle(p);
-  return changed_;
 }
 
 Vec3 FlowCoupling::kick(long a, const Vec3& v, const Vec3& F, double, double h) const {
@@ -218,101 +226,57 @@ void FlowCoupling::renumber(const std::vector<std::uint32_t>& map, std::size_t c
 
 namespace {
 
-// Raw bytes of trivially copyable values and vectors of them, in a fixed order (as model/checkpoint.cpp does).
-struct Pack {
-  std::vector<char> out;
-  template <class T>
-  void put(const T& v) {
-    static_assert(std::is_trivially_copyable_v<T>);
-    const auto* b = reinterpret_cast<const char*>(&v);
-    out.insert(out.end(), b, b + sizeof(T));
-  }
-  template <class T>
-  void put(const std::vector<T>& v) {
-    put(static_cast<std::uint64_t>(v.size()));
-    const auto* b = reinterpret_cast<const char*>(v.data());
-    out.insert(out.end(), b, b + v.size() * sizeof(T));
-  }
-  void put(const flow::Faces& f) {
-    for (const auto& c : f) put(c);
-  }
-};
-
-struct Unpack {
-  const std::vector<char>& in;
-  std::size_t at = 0;
-  void take(void* to, std::size_t n) {
-    if (n > in.size() - at) throw std::invalid_argument("flow coupling: truncated state");
-    std::memcpy(to, in.data() + at, n);
-    at += n;
-  }
-  template <class T>
-  void put(T& v) {
-    static_assert(std::is_trivially_copyable_v<T>);
-    take(&v, sizeof(T));
-  }
-  template <class T>
-  void put(std::vector<T>& v) {
-    std::uint64_t n = 0;
-    put(n);
-    if (n > (in.size() - at) / sizeof(T)) throw std::invalid_argument("flow coupling: a length past the end");
-    v.resize(n);
-    take(v.data(), n * sizeof(T));
-  }
-  void put(flow::Faces& f) {
-    for (auto& c : f) put(c);
-  }
+// What the state holds besides the members (the drag laws are remade from the particles, not stored).
+struct Saved {
+  coupling::CoupledParticles p;
+  coupling::CoupledFlow::Start start;
+  std::vector<Vec> impulse;
+  coupling::CycleStats last;
+  flow::FlowSolver::State flow;
 };
 
 // Both directions in one order: io.put(x) writes or reads x.
 template <class IO, class S, class C>
 void pack_state(IO& io, S& st, C& coupled, std::vector<char>& member, std::vector<long>& list, long& step, long& cycles) {
-  io.put(member), io.put(list), io.put(step), io.put(cycles);
-  io.put(st.p.x), io.put(st.p.v), io.put(st.start.u), io.put(st.start.share), io.put(st.start.beta);
-  io.put(st.impulse), io.put(st.last);
-  io.put(coupled.x_flow), io.put(coupled.pending);
+  auto faces = [&](auto& f) {
+    for (auto& c : f) io(c);
+  };
+  io(member), io(list), io(step), io(cycles);
+  io(st.p.x), io(st.p.v), io(st.start.u), io(st.start.share), io(st.start.beta), io(st.impulse), io(st.last);
+  io(coupled.x_flow), io(coupled.pending);
   auto& f = st.flow;
-  io.put(f.u), io.put(f.continuity_impulse), io.put(f.pressure_impulse), io.put(f.p), io.put(f.alpha), io.put(f.mu);
-  io.put(f.eps), io.put(f.eps_next), io.put(f.with_rate), io.put(f.pressure_ready), io.put(f.t), io.put(f.last);
-  io.put(f.totals);
+  faces(f.u), faces(f.continuity_impulse), faces(f.pressure_impulse);
+  io(f.p), io(f.alpha), io(f.mu), io(f.eps), io(f.eps_next), io(f.with_rate), io(f.pressure_ready), io(f.t);
+  io(f.last), io(f.totals);
 }
 
 }  // namespace
 
 std::vector<char> FlowCoupling::save() const {
-  Pack io;
-  io.put(started_);
-  if (!started_) return io.out;
-  struct {
-    coupling::CoupledParticles p;
-    coupling::CoupledFlow::Start start;
-    std::vector<Vec> impulse;
-    coupling::CycleStats last;
-    flow::FlowSolver::State flow;
-  } st{s_->p, s_->start, s_->impulse, s_->last, s_->solver.state()};
+  StateBytes b;
+  auto io = [&](auto& v) { b.put(v); };
+  bool started = started_;
+  io(started);
+  if (!started_) return b.data();
+  Saved st{s_->p, s_->start, s_->impulse, s_->last, s_->solver.state()};
   coupling::CoupledFlow::State c = s_->coupled.state();
   std::vector<char> member = member_;
   std::vector<long> list = members_;
   long step = step_in_cycle_, cycles = cycles_;
   pack_state(io, st, c, member, list, step, cycles);
-  return io.out;
+  return b.data();
 }
 
 void FlowCoupling::restore(const std::vector<char>& bytes, const Particles& p) {
-  Unpack io{bytes};
-  io.put(started_);
+  StateReader rd({reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()}, "checkpoint (flow state)");
+  auto io = [&](auto& v) { rd.get(v); };
+  io(started_);
   if (!started_) return;
   start(p);  // the per-particle constants (diameters, masses, drag laws) of the restored particles
-  struct {
-    coupling::CoupledParticles p;
-    coupling::CoupledFlow::Start start;
-    std::vector<Vec> impulse;
-    coupling::CycleStats last;
-    flow::FlowSolver::State flow;
-  } st;
+  Saved st;
   coupling::CoupledFlow::State c;
   pack_state(io, st, c, member_, members_, step_in_cycle_, cycles_);
-  if (io.at != bytes.size()) throw std::invalid_argument("flow coupling: trailing bytes in the state");
+  if (!rd.done()) rd.damaged("bytes left over in the flow state");
   s_->p.x = std::move(st.p.x), s_->p.v = std::move(st.p.v);
   s_->start = std::move(st.start), s_->impulse = std::move(st.impulse), s_->last = st.last;
   s_->coupled.restore(std::move(c));

@@ -30,6 +30,7 @@
 
 #include <array>
 #include <cstdint>
+#include <exception>
 #include <memory>
 #include <vector>
 
@@ -79,7 +80,13 @@ class FlowCoupling {
   // Once per step, before the pair forces (one thread): the first call starts the coupling, every
   // coupling_interval-th closes the cycle and opens the next. Returns the particles whose velocity it changed
   // (the World refreshes their ghost copies), ascending.
+  // A failure in there (the flow's RuntimeFailure: a time-step collapse, a non-finite field) cannot leave the
+  // World's parallel region: it is kept, later calls do nothing, and rethrow() (the World, after the region)
+  // throws it.
   const std::vector<long>& prepare(Particles& p);
+  void rethrow() const {
+    if (failure_) std::rethrow_exception(failure_);
+  }
   bool claims(long a) const { return member_[static_cast<std::size_t>(a)] != 0; }
   const std::vector<long>& members() const { return members_; }
   // The half kick h (s) of member a under F (N: contacts + m g): the paste's drag and pending pressure force.
@@ -88,7 +95,7 @@ class FlowCoupling {
   // The whole dynamic state as bytes (model/checkpoint.cpp), and back: the flow solver's fields, the coupling's
   // pending impulses, the cycle's drag and impulses, the members. restore() takes the World's particles as
   // restored (their radii and masses give each one's drag law again, the same values): a resumed run gives the
-  // same bits as one that never stopped. InputError-free: a damaged state throws std::invalid_argument.
+  // same bits as one that never stopped. A damaged state is an InputError (model/state_bytes.h).
   std::vector<char> save() const;
   void restore(const std::vector<char>& bytes, const Particles& p);
 
@@ -107,6 +114,7 @@ class FlowCoupling {
   friend struct pastemix::model::CheckpointAccess;  // model/checkpoint.cpp: saves and restores the state
   struct State;  // flow_coupling.cpp: the solver, the coupling, the cycle's arrays
   void start(const Particles& p);
+  void cycle(Particles& p);  // prepare()'s work: start, or close the cycle and open the next
   void begin_cycle(const Particles& p);
   std::unique_ptr<State> s_;
   std::vector<char> member_;   // per particle: in the flow box at the cycle's start
@@ -114,6 +122,7 @@ class FlowCoupling {
   std::vector<long> changed_;  // scratch of prepare()
   long step_in_cycle_ = 0, cycles_ = 0;
   bool started_ = false;
+  std::exception_ptr failure_;
 };
 
 }  // namespace pastemix::model::fluid

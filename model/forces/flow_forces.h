@@ -41,6 +41,8 @@ struct FlowForces {
     }
   }
 
+  // After the World's parallel region: the coupling's failure, if any (fluid/flow_coupling.h).
+  void rethrow() const { coupling->rethrow(); }
   // The World sorted or removed particles (map: old -> new dense index, Particles::kGone if removed).
   void particles_moved(const std::vector<std::uint32_t>& map) { coupling->renumber(map, map.size()); }
   void particles_removed(const std::vector<std::uint32_t>& map, std::size_t count) { coupling->renumber(map, count); }

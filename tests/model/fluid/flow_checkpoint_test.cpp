@@ -5,9 +5,7 @@
 // fields of every snapshot.
 #include <unistd.h>
 
-#include <cstring>
 #include <filesystem>
-#include <fstream>
 
 #include <doctest/doctest.h>
 #include <fmt/format.h>
@@ -26,14 +24,7 @@ using namespace pastemix;
 using namespace pastemix::model;
 namespace fs = std::filesystem;
 
-namespace {
-
-template <class T>
-bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
-}
-
-}  // namespace
+using model::test::same_bits;
 
 TEST_CASE("flow checkpoint: resumed mid-cycle in a fresh World, the run goes on with the same bits") {
   const fs::path dir = fs::absolute(fmt::format("flow_checkpoint_{}", ::getpid()));
@@ -69,15 +60,16 @@ TEST_CASE("flow checkpoint: resumed mid-cycle in a fresh World, the run goes on 
   fs::remove_all(dir);
 }
 
-TEST_CASE("flow output: pastemix run writes the grid, each snapshot's flow fields and the paste volume") {
+TEST_CASE("flow output: the shipped flow_drop scene runs and writes the grid, each snapshot's flow fields and the paste volume") {
   const fs::path dir = fs::absolute(fmt::format("flow_output_{}", ::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
-  std::ofstream(dir / "drop.toml") << model::test::flow_drop_scene(0.2);
-  const auto r = pastemix::test::run_pastemix(fmt::format("run '{}' --out '{}' --quiet --threads 1", (dir / "drop.toml").string(), dir.string()));
+  const auto r = pastemix::test::run_pastemix(
+      fmt::format("run '{}' --set end_time=0.2 --out '{}' --quiet --threads 1",
+                  pastemix::test::source_path("datasets/scenes/flow_drop.toml"), dir.string()));
   INFO(r.output);
   REQUIRE(r.exit_code == 0);
-  const H5Reader h(dir / "drop.h5");
+  const H5Reader h(dir / "flow_drop.h5");
   CHECK(h.attribute_string("/flow", "dynamics") == "flow");
   CHECK(h.attribute_int("/flow", "nx") == 6);
   CHECK(h.attribute_int("/flow", "nz") == 12);

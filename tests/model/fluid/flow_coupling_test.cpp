@@ -10,7 +10,6 @@
 #include <omp.h>
 
 #include <cmath>
-#include <cstring>
 #include <tuple>
 
 #include "base/units.h"
@@ -101,18 +100,25 @@ TEST_CASE("flow pass: the same bits at 1 and 2 threads and in batches (contacts,
   const auto [xb, vb, ub, pairs_b, cycles_b] = run(2, 1);
   const auto [xc, vc, uc, pairs_c, cycles_c] = run(2, 300);
   const auto [xd, vd, ud, pairs_d, cycles_d] = run(1, 300);
-  CHECK(std::memcmp(xa.data(), xd.data(), xa.size() * sizeof(Vec3)) == 0);
   MESSAGE(fmt::format("{} spheres, at most {} contacts (pairs and walls), {} cycles", xa.size(), pairs, cycles));
   CHECK(cycles == 100);
   CHECK(pairs > 0);
-  REQUIRE(xa.size() == xb.size());
-  REQUIRE(xa.size() == xc.size());
-  CHECK(std::memcmp(xa.data(), xb.data(), xa.size() * sizeof(Vec3)) == 0);
-  CHECK(std::memcmp(va.data(), vb.data(), va.size() * sizeof(Vec3)) == 0);
-  CHECK(std::memcmp(xa.data(), xc.data(), xa.size() * sizeof(Vec3)) == 0);
-  CHECK(std::memcmp(va.data(), vc.data(), va.size() * sizeof(Vec3)) == 0);
-  REQUIRE(ua.size() == ub.size());
-  CHECK(std::memcmp(ua.data(), ub.data(), ua.size() * sizeof(double)) == 0);
-  CHECK(std::memcmp(ua.data(), uc.data(), ua.size() * sizeof(double)) == 0);
+  for (const auto* x : {&xb, &xc, &xd}) CHECK(model::test::same_bits(xa, *x));
+  for (const auto* v : {&vb, &vc, &vd}) CHECK(model::test::same_bits(va, *v));
+  for (const auto* u : {&ub, &uc, &ud}) CHECK(model::test::same_bits(ua, *u));
 }
 
+
+TEST_CASE("flow pass: a failure inside the World's parallel region reaches the caller instead of aborting") {
+  // A 12 mm sphere's kernel (c = 2.5: half-width 15 mm) is longer than the 1 cm wide box: the kernel refuses it
+  // in the first step's flow start, inside the region; the World rethrows it after the region.
+  const std::string text =
+      "seed = 1\ntime_step = 1e-4\nend_time = 0.01\n[domain]\nmin = [-0.01, -0.01, -0.01]\nmax = [0.02, 0.07, 0.13]\n"
+      "[contact]\nlaw = \"hertz_mindlin\"\n" + model::test::material("rock", 2760, 4.68e7, 0.19) +
+      model::test::interaction("rock/rock", 0.5, 0.5) +
+      "[[fluid]]\nname = \"paste\"\nx = [0.0, 0.01]\ny = [0.0, 0.06]\nbottom = 0.0\nsurface = 0.04\ndensity = 1800\n"
+      "rheology = \"newtonian\"\nviscosity = 0.5\ncurve = \"stokes\"\ndynamics = \"flow\"\ncell = 0.01\ntop = 0.12\n"
+      "kernel_width = 2.5\n[[particle]]\nmaterial = \"rock\"\nradius = 0.006\nposition = [0.005, 0.03, 0.02]\n";
+  World w = make_world(model::test::scene_from(text));
+  CHECK_THROWS_WITH_AS(w.advance(10), doctest::Contains("longer than the box"), std::invalid_argument);
+}

@@ -3,13 +3,21 @@
 // dynamics = "flow" region of 1 cm cells up to 12 cm, parsed through the real scene loader.
 #pragma once
 
+#include <cstring>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
 
 #include "tests/model/scene_text.h"
 
 namespace pastemix::model::test {
+
+// The two arrays hold the same bits.
+template <class T>
+bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
+}
 
 // The box, its rock and a flow region with the paste's keys `paste` and the flow keys `flow` added; the
 // surface at `surface` m. No particles: the caller appends them.
