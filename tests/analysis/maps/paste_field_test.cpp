@@ -157,7 +157,7 @@ TEST_CASE("paste field: each rock is mixed by the paste share around it, without
         doctest::Approx(0.3 * cell_fluid).epsilon(1e-12));
 }
 
-TEST_CASE("paste field: without fluid_surface_z the field gives the surface; a --surface-z override keeps its own") {
+TEST_CASE("paste field: without fluid_surface_z the field gives the surface, and a --surface-z override keeps its own") {
   test::ResultSpec s = field_spec({{{0.1, 0.08, 0.05}, 0.003}});
   s.surface = false;
   test::ScratchDir dir("pf_nosurf");
