@@ -50,8 +50,8 @@ struct PasteField {
 bool has_paste_field(const H5Reader& h5);
 
 // Reads the field nearest `time_s` (see above). Any defect (a missing attribute, dims that are not the grid's,
-// alpha outside [-1e-9, 1 + 1e-9] or not finite, no snapshot near time_s) is an InputError naming `file` and
-// the dataset or attribute. Values within 1e-9 of [0, 1] are clamped (the flow's round-off).
+// alpha outside [-1e-4, 1 + 1e-4] or not finite, no snapshot near time_s) is an InputError naming `file` and
+// the dataset or attribute. Values within 1e-4 of [0, 1] are clamped (the flow's advection overshoots by ~5e-6).
 PasteField read_paste_field(const H5Reader& h5, const std::string& file, double time_s);
 
 // The area-mean paste height (m) over the rectangle [x0, x1] x [y0, y1]: each column's height function
