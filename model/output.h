@@ -38,7 +38,8 @@
 //
 // The .xmf file beside it is XDMF 2: a temporal collection of Polyvertex grids whose Geometry (XYZ) and
 // attributes (radius, id, velocity) point into the .h5, so ParaView opens the particles directly
-// (use "Point Gaussian" with radius as the scale array to see spheres).
+// (use "Point Gaussian" with radius as the scale array to see spheres). With a flow, a second temporal collection
+// "paste" holds the flow's cell fields on a 3DCoRectMesh (paste_fraction, fluid_fraction, pressure, velocity).
 #pragma once
 
 #include <filesystem>
@@ -75,6 +76,7 @@ class RunOutput {
   friend struct CheckpointAccess;  // model/checkpoint.cpp: the result so far travels in the checkpoint
   void write_escaped(const World& w);
   void flow_snapshot(const fluid::FlowCoupling& c, std::size_t k);
+  std::string flow_xdmf(const fluid::FlowFields& f) const;  // the "paste" collection of the .xmf
   std::unique_ptr<H5Writer> h5_;
   std::string h5_name_;
   bool rotation_ = false;

@@ -6,6 +6,10 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <regex>
+#include <sstream>
 
 #include <doctest/doctest.h>
 #include <fmt/format.h>
@@ -60,6 +64,31 @@ TEST_CASE("flow checkpoint: resumed mid-cycle in a fresh World, the run goes on 
   fs::remove_all(dir);
 }
 
+// The .xmf beside a flow result: a "paste" collection on the 7 x 7 x 13 corner nodes of the 6 x 6 x 12 cells of
+// 1 cm from the origin (0, 0, 0), and every HDF DataItem (particles and paste) names a dataset of the .h5 whose
+// dimensions are the ones stated, so ParaView reads what is there.
+static void check_xdmf(const fs::path& xmf, const H5Reader& h) {
+  std::ifstream in(xmf);
+  const std::string x((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  CHECK(x.find("<Grid Name=\"paste\" GridType=\"Collection\" CollectionType=\"Temporal\">") != std::string::npos);
+  CHECK(x.find("TopologyType=\"3DCoRectMesh\" Dimensions=\"13 7 7\"") != std::string::npos);
+  CHECK(x.find("Format=\"XML\">0 0 0</DataItem>") != std::string::npos);
+  CHECK(x.find("Format=\"XML\">0.01 0.01 0.01</DataItem>") != std::string::npos);
+  const std::regex item(R"re(<DataItem Dimensions="([0-9 ]+)"[^>]*Format="HDF">flow_drop\.h5:([^<]+)</DataItem>)re");
+  int items = 0, flow_items = 0;
+  for (auto it = std::sregex_iterator(x.begin(), x.end(), item); it != std::sregex_iterator(); ++it, ++items) {
+    std::istringstream dims((*it)[1].str());
+    std::vector<std::uint64_t> want;
+    for (std::uint64_t d; dims >> d;) want.push_back(d);
+    const std::string path = (*it)[2].str();
+    flow_items += path.rfind("/flow/", 0) == 0 ? 1 : 0;
+    CHECK_MESSAGE(h.dims(path) == want, path);
+  }
+  const auto snaps = h.read_doubles("/snapshots/time").size();
+  CHECK(flow_items == static_cast<int>(4 * snaps));  // paste and fluid fractions, pressure, velocity
+  CHECK(items > flow_items);
+}
+
 TEST_CASE("flow output: the shipped flow_drop scene runs and writes the grid, each snapshot's flow fields and the paste volume") {
   const fs::path dir = fs::absolute(fmt::format("flow_output_{}", ::getpid()));
   fs::remove_all(dir);
@@ -85,5 +114,7 @@ TEST_CASE("flow output: the shipped flow_drop scene runs and writes the grid, ea
   const std::vector<double> volume = h.read_doubles("/flow/timeseries/paste_volume");
   REQUIRE(!volume.empty());
   for (double v : volume) CHECK(std::abs(v - 0.06 * 0.06 * 0.06) < 1e-12);
+  CHECK(h.attribute_double("/", "fluid_solids_fraction") == 0.725);  // the scene's, for the maps' dried paste
+  check_xdmf(dir / "flow_drop.xmf", h);
   fs::remove_all(dir);
 }
