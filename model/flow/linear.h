@@ -97,7 +97,8 @@ class ViscousOperator {
   bool touches_wall(const Term& t) const;  // a shear term with a blocked face among its faces
 };
 
-// Pressure projection: solves div((dt / rho_f) grad p) = div u (p in Pa, 0 on an open side; in a closed box
+// Pressure projection: solves div((dt / rho_f) grad p) = div u (p in Pa; on an open side 0 where the fluid
+// leaves and -rho u_n^2 / 2 where it comes in, Dong et al. 2014's energy-stable condition; in a closed box
 // defined up to a constant, returned with p = 0 in cell 0) and sets u -= (dt / rho_f) grad p, so that
 // ||div u_new|| / ||div u*|| <= tol, recomputed from the updated faces (RuntimeFailure otherwise). `p` is the
 // initial guess and the result.
@@ -125,17 +126,28 @@ struct FluidFraction {
 class PressureOperator {
  public:
   explicit PressureOperator(const Grid& g);
+  // inflow_pressure = false: the outside pressure is 0 on every open face (a correction such as the continuity
+  // projection's, whose result is not the pressure); true: set_inflow_velocity's.
   ProjectionStats project(double dt, const Faces& rho_face, Faces& u, std::vector<double>& p, double tol,
-                          int max_iterations, const FluidFraction* eps = nullptr);
+                          int max_iterations, const FluidFraction* eps = nullptr, bool inflow_pressure = true);
   // u -= (dt / rho_f) grad p on every face the projection acts on (the same discrete gradient, p = 0 outside an
-  // open side): the pressure-gradient part of a step (a negative dt adds it back).
+  // open side): the pressure-gradient part of a step (a negative dt adds it back). Stateless, so a step resumed
+  // from a checkpoint predicts with the same bits; the projection then solves for the whole pressure with the
+  // open side's inflow pressure.
   void subtract_gradient(double dt, const Faces& rho_face, const std::vector<double>& p, Faces& u) const;
   // The impulse density of that gradient, out = dt grad p (N s/m3) on the same faces (0 elsewhere): the fluid's
   // velocity change is -out / rho_f; a particle's share of it (model A) is -V_p times its kernel mean.
+  // Outside an open side: the last project()'s boundary pressure (call it right after that project()).
   void gradient_impulse(double dt, const std::vector<double>& p, Faces& out) const;
   // Walls inside the box (obstacle.h), or none: a blocked face drops out of the operator (no flux: Neumann,
   // the pressure may jump across the wall) and the gradient leaves its velocity alone. Kept by pointer.
   void set_blocked(const FaceMask* m) { blocked_ = m; }
+  // The density of the fluid an open side lets in (kg/m3; the solver's air), for the inflow pressure
+  // -rho_in u_n^2 / 2; 0 (the default): the face's own density.
+  void set_inflow_density(double rho_in) { inflow_density_ = rho_in; }
+  // The open side's outside pressure for the next project() calls, from the step's start velocity u (Dong et
+  // al. 2014: -rho_in u_n^2 / 2 on a face where u comes in, 0 where it leaves); all 0 until called.
+  void set_inflow_velocity(const Faces& u, const Faces& rho_face);
 
  private:
   struct Link {
@@ -149,11 +161,18 @@ class PressureOperator {
   // continuity residual, with eps); returns ||div||.
   double apply(double dt, const Faces& rho_face, const Faces& u_star, Eigen::VectorXd& x, std::vector<double>& p,
                Faces& u, std::vector<double>& div, const FluidFraction* eps) const;
+  void open_side_rhs(double dt, const Faces& rho_face, const FluidFraction* eps, Eigen::VectorXd& rhs) const;
   Grid g_;
   std::vector<Link> links_;
   bool open_ = false;
   const FaceMask* blocked_ = nullptr;
   bool wall(const Link& l) const { return blocked_ && blocked(*blocked_, l.c, l.face); }
+  std::vector<double> open_p_;    // Pa, outside pressure of each link in the last project()
+  std::vector<double> inflow_p_;  // Pa, the same from set_inflow_velocity (0 but on an inflowing open face)
+  double inflow_density_ = 0.0;  // kg/m3
+  std::vector<double> zero_;    // 0 per link: subtract_gradient's outside pressure
+  void subtract_gradient(double dt, const Faces& rho_face, const std::vector<double>& p, Faces& u,
+                         const std::vector<double>& open_p) const;
   long pin_ = 0;  // value position of cell 0's diagonal (pinned in the closed box's preconditioner)
   Matrix A_;
 };

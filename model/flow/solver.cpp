@@ -21,6 +21,7 @@ FlowSolver::FlowSolver(const Grid& grid, Phases phases, FlowSettings settings)
   p_.assign(g_.cell_count(), 0.0);
   alpha_.assign(g_.cell_count(), 0.0);
   mu_.assign(g_.cell_count(), ph_.eta_air);
+  pressure_.set_inflow_density(ph_.rho_air);  // an open side lets air in (advection.cpp)
 }
 
 void FlowSolver::add_paste_box(const std::array<double, 3>& lo, const std::array<double, 3>& hi) {
@@ -95,7 +96,7 @@ void FlowSolver::project_continuity(double dt, const FluidFraction& vf) {
   std::vector<double> phi(g_.cell_count(), 0.0);  // a pressure (Pa) over dt, not kept: the pressure is p_
   try {
     pressure_.project(dt, face_densities(g_, ph_, alpha_), u_, phi, s_.pressure_tolerance * std::max(reference, r0) / r0,
-                      s_.max_iterations, &vf);
+                      s_.max_iterations, &vf, false);
   } catch (const RuntimeFailure& e) {
     throw RuntimeFailure(fmt::format("{} (the continuity projection before advection) in the step from t = {:.9g} s",
                                      e.what(), t_));
@@ -255,6 +256,7 @@ StepStats FlowSolver::step(double dt) {
   require_finite_faces(g_, u_, "velocity", at("after advection"));
   const Faces rho = face_densities(g_, ph_, alpha_);
   require_finite_faces(g_, rho, "face density", at("after the face densities"), true);
+  pressure_.set_inflow_velocity(u_, rho);  // the open side's inflow pressure from u^n (its faces are not advected)
   update_viscosity(gamma);
   require_finite_cells(g_, mu_, "viscosity", at("after the viscosities"), true);
   const EdgeLaw edge{ph_.paste.get(), &alpha_, ph_.eta_air, &u_lag, &parts};

@@ -80,6 +80,11 @@ TEST_CASE("projection: the discrete gradient of any cell field is removed entire
     std::uniform_real_distribution<double> U(-1.0, 1.0);
     std::vector<double> phi(g.cell_count());
     for (double& v : phi) v = U(rng);
+    // The top layer below the open face at phi < 0, so u = grad(phi) leaves through every open face, where the
+    // outside pressure is 0 (on an inflowing face it is -rho u_n^2 / 2: the next test).
+    if (open)
+      for (int j = 0; j < g.n[1]; ++j)
+        for (int i = 0; i < g.n[0]; ++i) phi[g.cell({i, j, g.n[2] - 1})] = -0.5 - 0.5 * std::abs(U(rng));
     // u = grad(phi) on the MAC faces, with phi = 0 on the open face (half a cell above the last centre).
     Faces u, rho;
     double norm0 = 0.0;
@@ -102,4 +107,43 @@ TEST_CASE("projection: the discrete gradient of any cell field is removed entire
       for (double v : u[c]) worst = std::max(worst, std::abs(v));
     CHECK(worst / norm0 < 1e-9);
   }
+}
+
+// A column of 4 cells (walls around, one open end) whose only nonzero predicted face is the open one, u* = w
+// along the outward normal: the projected velocity is 0 everywhere and the pressure uniform. From the open
+// face's update 0 = w - (2 dt / (rho h)) (p_b - p): p = p_b - rho w h / (2 dt), with the outside pressure
+// p_b = 0 where the fluid leaves (w > 0) and -rho w^2 / 2 where it comes in (w < 0; Dong, Karniadakis &
+// Chryssostomidis 2014, the normal part; rho_in is the face's own with no set_inflow_density). Both ends,
+// both directions.
+TEST_CASE("projection: the open side's outside pressure is 0 where the fluid leaves and -rho u_n^2 / 2 where it comes in") {
+  const double rho = 1.2, h = 0.01, dt = 1e-3;  // kg/m3 (air), m, s
+  for (const int hi : {0, 1})
+    for (const double w : {0.5, -0.5, -2.0}) {  // m/s along the outward normal
+      Grid g;
+      g.n = {1, 1, 4};
+      g.h = {h, h, h};
+      g.bc[4 + hi].type = BoundaryType::open;
+      Faces u, r;
+      for (int c = 0; c < 3; ++c) {
+        u[c].assign(g.face_count(c), 0.0);
+        r[c].assign(g.face_count(c), rho);
+      }
+      const int k_open = hi ? g.n[2] : 0;
+      u[2][g.face(2, {0, 0, k_open})] = hi ? w : -w;
+      std::vector<double> p(g.cell_count(), 0.0);
+      PressureOperator op(g);
+      op.set_inflow_velocity(u, r);  // the step's start velocity: here the same field
+      op.project(dt, r, u, p, 1e-13, 1000);
+      const double p_b = w < 0.0 ? -0.5 * rho * w * w : 0.0;
+      const double want = p_b - rho * w * h / (2.0 * dt);
+      INFO("open end " << (hi ? "top" : "bottom") << ", w = " << w);
+      for (double v : p) CHECK(std::abs(v - want) < 1e-9 * std::abs(want));
+      for (int c = 0; c < 3; ++c)
+        for (double v : u[c]) CHECK(std::abs(v) < 1e-12);
+      // A correction (inflow_pressure = false) sees 0 outside even where the fluid comes in.
+      u[2][g.face(2, {0, 0, k_open})] = hi ? w : -w;
+      std::vector<double> phi(g.cell_count(), 0.0);
+      op.project(dt, r, u, phi, 1e-13, 1000, nullptr, false);
+      for (double v : phi) CHECK(std::abs(v + rho * w * h / (2.0 * dt)) < 1e-9 * std::abs(want));
+    }
 }
