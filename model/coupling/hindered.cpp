@@ -2,12 +2,16 @@
 #include "model/coupling/hindered.h"
 
 #include <chrono>
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <numbers>
 #include <random>
 
 #include "model/coupling/coupled_flow.h"
+#include "model/coupling/drag.h"
+#include "model/coupling/exchange.h"
+#include "model/coupling/kernel.h"
 
 namespace pastemix::coupling {
 
@@ -33,6 +37,8 @@ HinderedResult run_hindered(const HinderedSettings& s) {
   flow.add_paste_box({0, 0, 0}, {L, L, L});
   CouplingSettings cs;
   cs.closure.voidage = s.voidage;
+  cs.closure.disturbance = s.disturbance;
+  cs.width_factor = s.width_factor;
   cs.gravity = {0.0, 0.0, -kG};
   CoupledFlow cf(flow, cs);
   SphereDrag stokes;  // Stokes's drag: the law the reference's v_t is of
@@ -53,8 +59,11 @@ HinderedResult run_hindered(const HinderedSettings& s) {
     return std::array<double, 3>{0.0, 0.0, V_p * G};
   };
   const double v_t = (s.rho_particle - s.rho_fluid) * kG * d * d / (18.0 * mu), eps = 1.0 - s.solid_fraction;
-  double sum = 0.0;
+  double sum = 0.0, local = 0.0, carried = 0.0, beta_sum = 0.0, resolved = 0.0;
   int count = 0;
+  const Exchange ex(g, s.width_factor);
+  const std::vector<double> none(p.size(), 0.0);
+  const double F = V_p * (s.rho_particle - M / V_box) * kG;  // N, the mean drag at the terminal state
   for (int k = 1; k <= s.cycles; ++k) {
     cf.cycle(p, 1, s.coupling_interval, pressure);
     if (2 * k <= s.cycles) continue;
@@ -64,12 +73,33 @@ HinderedResult run_hindered(const HinderedSettings& s) {
     const double uf = cf.fluid_momentum()[2] / (M - n * m_p);
     sum += -eps * (vp - uf);  // m/s, downward positive
     ++count;
+    std::vector<double> share;
+    const auto at = ex.fluid_velocity({p.x, p.d, p.m, none, none}, cf.flow().velocity(), cf.flow().fluid_mass(), nullptr, share);
+    const std::vector<double>& eps_f = cf.flow().fluid_fraction();
+    double wu = 0.0, b = 0.0, P = 0.0;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      wu += at[i][2];
+      P += cf.pending_impulse()[i][2] / s.coupling_interval;
+      const Stencil st = stencil(g, p.x[i], d, s.width_factor);
+      const double e = std::min(1.0, interpolate(g, st, eps_f) + own_solid_fraction(g, st, d));
+      const double slip = std::hypot(p.v[i][0] - at[i][0], p.v[i][1] - at[i][1], p.v[i][2] - at[i][2]);
+      b += drag_coefficients(stokes, d, s.width_factor, slip, e, mu, g.h, cs.closure).beta;
+    }
+    wu /= n;
+    local += -eps * (vp - wu);
+    carried += -(wu - uf);
+    beta_sum += b / n / drag_coefficients(stokes, d, s.width_factor, v_t, eps, mu, g.h, cs.closure).beta;
+    resolved += P / n / F;
   }
   HinderedResult r;
   r.spheres = n;
   r.ratio = sum / count / v_t;
   r.exponent = std::log(r.ratio) / std::log(eps);
   r.reference = std::pow(eps, 4.65);
+  r.local_slip = local / count / v_t;
+  r.carried = carried / count / v_t;
+  r.beta_ratio = beta_sum / count;
+  r.pressure_share = resolved / count;
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }

@@ -15,6 +15,8 @@ struct HinderedSettings {
   int cells = 8;                       // per axis
   double rho_particle = 2000.0, rho_fluid = 1000.0, viscosity = 5.0;  // kg/m3, kg/m3, Pa s
   bool voidage = true;                 // Di Felice (drag.h)
+  bool disturbance = true;             // the self-induced velocity correction (drag.h)
+  double width_factor = 2.0;           // kernel c
   double coupling_interval = 0.005;    // s, one DEM step per flow step
   int cycles = 200;                    // the mean is over the second half
   unsigned seed = 5;
@@ -25,6 +27,12 @@ struct HinderedResult {
   double ratio = 0.0;      // v_s / v_t
   double exponent = 0.0;   // log(ratio) / log(eps)
   double reference = 0.0;  // eps^4.65
+  // The settling's parts over the window, over v_t (downward positive): the slip the drag sees, mean_p
+  // (v_p - W u at x_p), times eps; what the fluid at the particles does beyond its volume mean, mean_p (W u) -
+  // mean u (the resolved flow the particles ride); the particles' mean drag coefficient over the closure's
+  // at eps = 1 - phi; the resolved pressure force (model A's -V_p grad p beyond the mean gradient) over the
+  // mean buoyant weight V_p (rho_p - rho_mix) g, upward positive.
+  double local_slip = 0.0, carried = 0.0, beta_ratio = 0.0, pressure_share = 0.0;
   double seconds = 0.0;
 };
 

@@ -43,6 +43,9 @@ struct SphereResult {
   double max_speed_late = 0.0;  // m/s, max |v_p| over the window (Bingham: the creep)
   double travel = 0.0;          // m, how far the sphere settled over the window
   double reynolds = 0.0;      // -, rho_f U d / mu
+  // -, the resolved pressure's force on the sphere (model A's -V_p grad p beyond the mean gradient) over the
+  // window, upward positive, over F: what the sphere's own reaction's pressure adds to its drag.
+  double pressure_share = 0.0;
   int cells = 0, cycles = 0;
   double seconds = 0.0;       // wall time
 };
