@@ -39,6 +39,8 @@ void CoupledFlow::start(const CoupledParticles& p) {
   flow_.set_fluid_fraction(fluid_fraction(p));
   x_flow_ = p.x;
   pending_.assign(p.size(), {0.0, 0.0, 0.0});
+  pending_interval_ = 0.0;
+  drag_.assign(p.size(), {0.0, 0.0, 0.0});
 }
 
 Vec CoupledFlow::face_mean(const Stencil& s, const flow::Faces& f) const {
@@ -82,6 +84,7 @@ CoupledFlow::Start CoupledFlow::drag_at_start(const CoupledParticles& p) const {
   const flow::Faces mass0 = flow_.fluid_mass(), mask0 = flow::face_means(g, flow_.alpha());
   Start s0;
   s0.beta.assign(n, 0.0);
+  s0.shift.assign(n, {0.0, 0.0, 0.0});
   s0.u = exchange_.fluid_velocity({p.x, p.d, p.m, none, none}, flow_.velocity(), mass0, &mask0, s0.share);
   const std::vector<double>& eps_now = flow_.fluid_fraction();
   for (std::size_t i = 0; i < n; ++i) {
@@ -92,7 +95,19 @@ CoupledFlow::Start CoupledFlow::drag_at_start(const CoupledParticles& p) const {
     const double mu = interpolate(g, s, flow_.viscosity());
     const Vec& u = s0.u[i];
     const double slip = std::hypot(p.v[i][0] - u[0], p.v[i][1] - u[1], p.v[i][2] - u[2]);
-    s0.beta[i] = s0.share[i] * drag_coefficients(p.drag[i], p.d[i], s_.width_factor, slip, eps, mu, g.h, s_.closure).beta;
+    const double k = own_pressure_share(g, s, p.d[i]);
+    s0.beta[i] = s0.share[i] * drag_coefficients(p.drag[i], p.d[i], s_.width_factor, slip, eps, mu, g.h, s_.closure, k).beta;
+    if (s_.closure.disturbance && pending_interval_ > 0.0 && s0.beta[i] > 0.0) {
+      // The particle's own hole in the fluid's body and pressure forces (coupled_flow.h), induced at it with
+      // the self-mobility of its kernel: u_undisturbed = u_p - g0 f_hole.
+      const double V = sphere_volume(p.d[i]), rho = flow_.phases().density(interpolate(g, s, flow_.alpha()));
+      const double g0 = self_mobility(p.d[i], s_.width_factor, g.h, mu);
+      for (int c = 0; c < 3; ++c) {
+        const double undisturbed = pending_[i][c] / pending_interval_ - k * drag_[i][c];  // N, -V_p grad p
+        const double hole = -V * rho * flow_.settings().gravity[c] - undisturbed;          // N
+        s0.shift[i][c] = -s0.share[i] * g0 * hole;
+      }
+    }
   }
   return s0;
 }
@@ -103,7 +118,7 @@ CoupledFlow::Start CoupledFlow::drag_at_start(const CoupledParticles& p) const {
 void CoupledFlow::dem_step(CoupledParticles& p, std::size_t i, double dt, int steps, const ExtraForce& extra,
                            const Start& s0, std::vector<Vec>& sub, CycleStats& st) const {
   const flow::Grid& g = flow_.grid();
-  const Vec& u = s0.u[i];
+  const Vec u{s0.u[i][0] + s0.shift[i][0], s0.u[i][1] + s0.shift[i][1], s0.u[i][2] + s0.shift[i][2]};
   Vec F{};
   const Vec fx = extra ? extra(i, p) : Vec{};
   for (int c = 0; c < 3; ++c) F[c] = p.m[i] * s_.gravity[c] + pending_[i][c] / (steps * dt) + fx[c];
@@ -208,6 +223,7 @@ void CoupledFlow::flow_interval(CoupledParticles& p, double T, const Start& s0, 
     const double V = sphere_volume(p.d[i]);
     for (int c = 0; c < 3; ++c) pending_[i][c] = -V * (a[c] + b[c]);
   }
+  pending_interval_ = T;
   x_flow_ = p.x;
 }
 
@@ -222,6 +238,8 @@ CycleStats CoupledFlow::cycle(CoupledParticles& p, int steps, double dt, const E
   for (int k = 0; k < steps; ++k)
     for (std::size_t i = 0; i < n; ++i) dem_step(p, i, dt, steps, extra, s0, sub, st);
   flow_interval(p, steps * dt, s0, sub, st);
+  for (std::size_t i = 0; i < n; ++i)
+    for (int c = 0; c < 3; ++c) drag_[i][c] = sub[i][c] / (steps * dt);
   return st;
 }
 

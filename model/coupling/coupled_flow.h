@@ -6,7 +6,14 @@
 // One cycle of `steps` DEM steps of dt (the coupling interval T = steps dt):
 //   1. Drag coefficients at the cycle's start (drag.h: the particle's law on the slip v - W u^n, the voidage the
 //      others leave, the disturbance correction), u_p = W u^n frozen (the exchange's masked weights, scaled by
-//      the particle's paste share).
+//      the particle's paste share). With the disturbance correction u_p also loses what the particle's own
+//      displaced fluid induces at it, g0 f_hole with f_hole = -V_p (rho_f g - grad p) (model A gives the fluid
+//      its body and pressure forces on eps_f only, so the particle's volume is a hole in them; the undisturbed
+//      flow of Maxey & Riley 1983 is the flow with fluid in the particle's place). It is 0 in a paste at rest
+//      (grad p = rho_f g) and V_p (rho_mix - rho_f) g downward in a uniform suspension (its Stokeslet is then
+//      the buoyant weight V_p (rho_p - rho_f) g, Batchelor 1972, of which the drag is eps); grad p is the
+//      undisturbed one: the pending pressure force of the last interval less the particle's own part k F_d
+//      (drag.h), F_d its drag over the last sub-cycle.
 //   2. DEM sub-cycle, each step: v += (m g + P / T + f_extra) dt / m (P: the pending pressure impulse, below);
 //      the velocity-dependent drag implicit against u_p (backward Euler, stable at any beta dt / m); the yield
 //      part in the same update (it removes at most F_y dt / (1 + beta dt / m) of momentum, never reversing the
@@ -85,6 +92,7 @@ class CoupledFlow {
   struct Start {  // per particle, at the cycle's start: u_p (m/s), paste share, beta (kg/s)
     std::vector<Vec> u;
     std::vector<double> share, beta;
+    std::vector<Vec> shift;  // m/s, what the particle's own displaced fluid adds to u_p (removed: drag.h)
   };
   Start drag_at_start(const CoupledParticles& p) const;
   void dem_step(CoupledParticles& p, std::size_t i, double dt, int steps, const ExtraForce& extra, const Start& s0,
@@ -98,6 +106,8 @@ class CoupledFlow {
   Exchange exchange_;
   std::vector<std::array<double, 3>> x_flow_;  // m: positions at the last flow step (its eps_f)
   std::vector<std::array<double, 3>> pending_;
+  double pending_interval_ = 0.0;  // s, the interval pending_ was summed over (0: no flow step yet)
+  std::vector<std::array<double, 3>> drag_;  // N, each particle's mean paste drag over the last sub-cycle
 };
 
 }  // namespace pastemix::coupling

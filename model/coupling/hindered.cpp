@@ -83,12 +83,12 @@ HinderedResult run_hindered(const HinderedSettings& s) {
       const Stencil st = stencil(g, p.x[i], d, s.width_factor);
       const double e = std::min(1.0, interpolate(g, st, eps_f) + own_solid_fraction(g, st, d));
       const double slip = std::hypot(p.v[i][0] - at[i][0], p.v[i][1] - at[i][1], p.v[i][2] - at[i][2]);
-      b += drag_coefficients(stokes, d, s.width_factor, slip, e, mu, g.h, cs.closure).beta;
+      b += drag_coefficients(stokes, d, s.width_factor, slip, e, mu, g.h, cs.closure, own_pressure_share(g, st, d)).beta;
     }
     wu /= n;
     local += -eps * (vp - wu);
     carried += -(wu - uf);
-    beta_sum += b / n / drag_coefficients(stokes, d, s.width_factor, v_t, eps, mu, g.h, cs.closure).beta;
+    beta_sum += b / n / drag_coefficients(stokes, d, s.width_factor, v_t, eps, mu, g.h, cs.closure, 0.0).beta;
     resolved += P / n / F;
   }
   HinderedResult r;

@@ -67,8 +67,7 @@ SphereResult run_sphere(const SphereSettings& s) {
   cs.gravity = {0.0, 0.0, -kG};
   CoupledFlow cf(flow, cs);
   CoupledParticles p;
-  // Off the cell lattice's symmetry points, so that the answer is not a lucky alignment.
-  p.x = {{0.37 * L, 0.41 * L, 0.53 * L}};
+  p.x = {{s.start[0] * L, s.start[1] * L, s.start[2] * L}};
   p.v = {{0.0, 0.0, 0.0}};
   p.d = {d};
   p.m = {m_p};

@@ -15,6 +15,8 @@
 // = 0.044 the sphere sticks (it must stay at rest: no creep through the coupling), below it moves.
 #pragma once
 
+#include <array>
+
 namespace pastemix::coupling {
 
 struct SphereSettings {
@@ -32,6 +34,9 @@ struct SphereSettings {
   // reference velocity (the drag varies with the sphere's place in its cell; Bingham: the settling time again).
   double settle_time = 0.0;         // s
   double coupling_interval = 0.005;  // s: one DEM step per flow step
+  // The start, in box lengths: off the cell lattice's symmetry points, so that the answer is not a lucky
+  // alignment (x and y stay; z is averaged over a cell's travel).
+  std::array<double, 3> start{0.37, 0.41, 0.53};
 };
 
 struct SphereResult {
