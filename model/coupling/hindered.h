@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: MIT
-// The `hindered` case of issue 18 (a consistency check of the voidage closure, reported, not bounded): a uniform
-// suspension of equal spheres settling through a Newtonian fluid in a periodic box (coupled_flow.h), the
-// mixture held by the mean pressure gradient as in `sphere`, against Richardson & Zaki (1954), v_s = v_t eps^n
-// with n = 4.65 at low Re; v_s is the spheres' velocity in the zero-volume-flux frame, eps (v_p - u_f), v_t the
-// isolated Stokes velocity. No contacts: the centres are uniform random (seeded), overlaps allowed.
+// The `hindered` case of issue 18 (a consistency check of the voidage closure): a uniform suspension of equal
+// spheres settling through a Newtonian fluid in a periodic box (coupled_flow.h), the mixture held by the mean
+// pressure gradient as in `sphere`, against Richardson & Zaki (1954), v_s = v_t eps^n with n = 4.65 at low Re;
+// v_s is the spheres' velocity in the zero-volume-flux frame, eps (v_p - u_f), v_t the isolated Stokes
+// velocity. No contacts: the centres are uniform random (seeded), overlaps allowed. One realization differs
+// from the next by several per cent (the box's density fluctuations drive a resolved convection): the
+// figures in VALIDATION.md are means over seeds.
 #pragma once
 
 namespace pastemix::coupling {
