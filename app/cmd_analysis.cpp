@@ -143,15 +143,10 @@ ResultOverrides overrides_of(const CommonOpts& o) {
 }
 
 MixingInputs inputs_for(const BlockLayout& L, const ResultSnapshot& r, double K, const CommonOpts& o) {
-  MixingInputs in;
-  in.layout = L;
-  in.surface_z = r.surface_z.value;
-  in.paste_density = r.paste_density.value;
-  in.solids_fraction = r.solids_fraction.value;
+  MixingInputs in = mixing_inputs(r, L);
   in.K = K;
   in.rho_s = o.rho_s;
   in.e_f = o.e_f;
-  in.escaped_mass = r.escaped_mass;
   return in;
 }
 

@@ -40,7 +40,9 @@ void write_maps_h5(const std::filesystem::path& path, const MixingMap& m, const 
   h5.attribute("/", "snapshot", static_cast<std::int64_t>(r.snapshot));
   h5.attribute("/", "snapshot_time_s", r.time_s);
   h5.attribute("/", "surface_z_m", in.surface_z);
-  h5.attribute("/", "surface_z_source", r.surface_z.source);
+  h5.attribute("/", "surface_z_source", in.surface_source.empty() ? r.surface_z.source : in.surface_source);
+  h5.attribute("/", "paste_rule", m.from_paste_field ? std::string("paste field (flow result): paste and mixed rock from its paste fraction")
+                                                     : std::string("flat surface: all fluid below the surface is paste"));
   h5.attribute("/", "paste_density_kg_m3", in.paste_density);
   h5.attribute("/", "paste_density_source", r.paste_density.source);
   h5.attribute("/", "solids_fraction", in.solids_fraction);
@@ -101,7 +103,7 @@ std::string maps_table(const MixingMap& m, const ResultSnapshot& r, const Mixing
                               r.seed, r.scene_hash.empty() ? "?" : r.scene_hash, r.snapshot, r.time_s,
                               r.radius.size());
   o += fmt::format("surface z = {:.5g} m ({}); paste {:g} kg/m3 ({}), solids {:g} ({}); rock density: {}\n",
-                   in.surface_z, r.surface_z.source, in.paste_density, r.paste_density.source, in.solids_fraction,
+                   in.surface_z, in.surface_source.empty() ? r.surface_z.source : in.surface_source, in.paste_density, r.paste_density.source, in.solids_fraction,
                    r.solids_fraction.source, r.density_source);
   o += fmt::format("K = {}\n", std::isfinite(in.K) ? fmt::format("{:g} kg/m3 ({})", in.K, K_source)
                                                     : std::string("unknown: S not computed (give --K or --lab CASE)"));
@@ -113,8 +115,8 @@ std::string maps_table(const MixingMap& m, const ResultSnapshot& r, const Mixing
   o += fmt::format("escaped (left the simulation's domain, removed: outflow) {:.6f} kg = {:.3g} % of the poured mass, "
                    "{} particle(s)\n",
                    m.escaped, m.poured > 0 ? 100.0 * m.escaped / m.poured : 0.0, r.escaped_count);
-  o += fmt::format("mixed (submerged) {:.6f} kg, unmixed (above the surface) {:.6f} kg; rock above the surface {}\n",
-                   m.mixed(), m.unmixed(),
+  o += fmt::format("mixed ({}) {:.6f} kg, unmixed {:.6f} kg; rock above the surface {}\n",
+                   m.from_paste_field ? "weighted by the paste fraction around each rock" : "submerged", m.mixed(), m.unmixed(),
                    L.top_open ? "counts in the layer-1 block under it (as the lab cut it)" : "is in no block");
   if (m.conservation_error() > 1e-9)
     o += fmt::format("warning: the accounting misses {:.1e} of the poured mass (more than 1e-9)\n", m.conservation_error());

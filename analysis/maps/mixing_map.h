@@ -13,6 +13,11 @@
 // Rock that left the simulation's domain (an outflow boundary, `escaped_mass`, read from the result's
 // /escaped) was poured but is in no block, neither mixed nor unmixed: it is a term of both balances.
 //
+// With a paste field (a `dynamics = "flow"` result, paste_field.h) the surface is the field's area-mean paste
+// height over the grid's footprint, a block's paste is the field's paste in it (not "all fluid below the
+// surface"), and each rock is mixed by the paste share of the fluid around it; rock above the surface still
+// counts in layer 1 with `top_open`, and layer 1's paste then includes any paste above the mean surface.
+//
 // Assumes the grid's blocks lie inside the container, full of paste below the surface (the default grid
 // covers the chapter-3 box exactly; a box corner at the origin).
 #pragma once
@@ -23,6 +28,8 @@
 #include <vector>
 
 #include "analysis/maps/block_grid.h"
+#include "analysis/maps/paste_field.h"
+#include "analysis/maps/result_file.h"
 
 namespace pastemix::analysis {
 
@@ -36,7 +43,14 @@ struct MixingInputs {
   double rho_s = 2710.0;         // kg/m3, tailings particle density (thesis ch. 3)
   double e_f = 0.6;              // -, final void ratio of the dried paste (thesis ch. 3)
   double escaped_mass = 0.0;     // kg, rock removed at the domain boundary before the snapshot (ResultSnapshot)
+  const PasteField* paste_field = nullptr;  // a flow result's paste (not owned); null: the flat-surface rule
+  std::string surface_source;    // where surface_z came from (reported)
 };
+
+// The inputs of one result on `layout`: its paste properties, escaped rock and surface; with a paste field the
+// surface is the field's area-mean paste height over the layout's footprint, unless --surface-z overrode it.
+// K, rho_s and e_f stay at their defaults (the caller's).
+MixingInputs mixing_inputs(const ResultSnapshot& r, const BlockLayout& layout);
 
 struct MixingMap {
   BlockLayout layout;
@@ -55,6 +69,7 @@ struct MixingMap {
   double outside_grid() const { return below_grid + beside_grid + above_uncounted; }
   double conservation_error() const;  // max of both balances' |poured - sum of the parts| / poured
   int overfull_blocks = 0;            // blocks whose rock volume exceeded the block volume (DEM overlaps)
+  bool from_paste_field = false;      // the paste and the mixed split came from a flow field
 };
 
 MixingMap mixing_map(const MixingInputs& in, const ParticleView& particles);

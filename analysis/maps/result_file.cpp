@@ -196,11 +196,15 @@ void read_escaped(const H5Reader& h5, const std::string& file, ResultSnapshot& r
 
 // The paste's surface height (m), density (kg/m3) and solids fraction: file attributes or overrides, checked.
 void read_paste(const H5Reader& h5, const std::string& file, const ResultOverrides& over, ResultSnapshot& r) {
-  r.surface_z = fluid_property(h5, file, "fluid_surface_z", over.surface_z, "--surface-z", "m", r.notes);
+  if (has_paste_field(h5)) r.paste_field = read_paste_field(h5, file, std::isnan(r.time_s) ? 0.0 : r.time_s);
+  if (r.paste_field && !over.surface_z && !h5.has_attribute("/", "fluid_surface_z"))
+    r.surface_z = {std::nan(""), "the paste field " + r.paste_field->source};
+  else
+    r.surface_z = fluid_property(h5, file, "fluid_surface_z", over.surface_z, "--surface-z", "m", r.notes);
   r.paste_density = fluid_property(h5, file, "fluid_density", over.paste_density, "--paste-density", "kg/m3", r.notes);
   r.solids_fraction =
       fluid_property(h5, file, "fluid_solids_fraction", over.solids_fraction, "--solids", "fraction", r.notes);
-  if (!std::isfinite(r.surface_z.value))
+  if (!std::isfinite(r.surface_z.value) && !r.paste_field)
     throw InputError(file, 0, r.surface_z.source, "fluid surface height is not finite");
   if (!(r.paste_density.value > 0.0) || !std::isfinite(r.paste_density.value))
     throw InputError(file, 0, r.paste_density.source,

@@ -9,6 +9,8 @@
 //   /escaped/{time (s), mass (kg)}   particles removed at the domain boundary ([domain] on_exit = "remove"):
 //                                    those removed up to the snapshot's time are part of the poured mass
 //                                    (absent in older files and runs without outflow: no escapes)
+//   /flow                            a `dynamics = "flow"` result's paste field (paste_field.h), optional; with it
+//                                    fluid_surface_z may be absent (the maps take the field's surface)
 // The last three describe the paste at the end of the run (the surface has risen by the volume of rock that
 // entered it). A command-line override takes precedence over the file and is reported as the source; without
 // either, reading fails with an InputError that names the file and the missing attribute and the option.
@@ -21,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/maps/paste_field.h"
 #include "base/vec3.h"
 
 namespace pastemix {
@@ -58,7 +61,8 @@ struct ResultSnapshot {
   std::vector<double> density;                  // kg/m3 per particle (from its material)
   double escaped_mass = 0.0;                    // kg, removed at the domain boundary up to time_s
   std::size_t escaped_count = 0;
-  Sourced surface_z, paste_density, solids_fraction;
+  Sourced surface_z, paste_density, solids_fraction;  // surface_z NaN: none in the file, the paste field has it
+  std::optional<PasteField> paste_field;  // a `dynamics = "flow"` result's paste at time_s (/flow, paste_field.h)
   std::string density_source;
   std::vector<std::string> notes;  // what came from the command line instead of the file
 };

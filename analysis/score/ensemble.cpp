@@ -2,6 +2,7 @@
 #include "analysis/score/ensemble.h"
 
 #include <array>
+#include <cmath>
 #include <stdexcept>
 
 #include "lab/ingest/block_cut.h"
@@ -55,6 +56,12 @@ Ensemble ensemble(const std::vector<MixingMap>& maps, double no_rock_below) {
       if (votes[static_cast<std::size_t>(c)] > votes[static_cast<std::size_t>(best)]) best = c;
     e.s_class.push_back(static_cast<SClass>(best - 1));
     e.s_class_share.push_back(static_cast<double>(votes[static_cast<std::size_t>(best)]) / e.n);
+    std::vector<double> s_defined;
+    for (const auto& m : maps)
+      if (m.rock_mass[b] >= no_rock_below && std::isfinite(m.S[b])) s_defined.push_back(m.S[b]);
+    Summary s = summarize(s_defined);
+    if (s_defined.empty()) s.mean = std::nan("");
+    e.S.push_back(s);
   }
   e.poured = over([](const MixingMap& m) { return m.poured; });
   e.mixed = over([](const MixingMap& m) { return m.mixed(); });

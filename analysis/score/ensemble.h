@@ -23,6 +23,9 @@ struct Ensemble {
   std::vector<SClass> s_class;      // per block: the majority class (ties: the lower class)
   double no_rock_below = 0.0;       // kg, see kLabMassResolution
   std::vector<double> s_class_share;  // per block: share of realizations in that class
+  // Per block, S (capped, fraction) over the realizations where it is defined (rock of at least no_rock_below
+  // and a known K); n = 0 and mean NaN where none is.
+  std::vector<Summary> S;
   Summary poured, mixed, unmixed, outside_grid, escaped;  // kg (escaped: left the simulation's domain)
 };
 

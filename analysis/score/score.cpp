@@ -55,8 +55,16 @@ void score_blocks(const lab::BlockGrid& g, const Ensemble& e, const BlockLayout&
         bs.class_agrees = bs.class_compared && bs.lab_class == bs.model_class;
         s.classes_compared += bs.class_compared;
         s.classes_agree += bs.class_agrees;
+        bs.lab_S = g.S[lb];
+        bs.model_S = e.S[mb];
+        bs.S_compared = std::isfinite(bs.lab_S) && std::isfinite(bs.model_S.mean);
+        if (bs.S_compared) {
+          s.S_mae_pp += 100.0 * std::abs(bs.model_S.mean - bs.lab_S);
+          ++s.S_compared;
+        }
         s.blocks.push_back(bs);
       }
+  s.S_mae_pp = s.S_compared ? s.S_mae_pp / s.S_compared : std::nan("");
 }
 
 // The two centre blocks (2,2,k) and (3,2,k) of each layer: their mean C, lab against model (pp).

@@ -9,7 +9,8 @@
 //   the centre-column profile: blocks M_22k and M_32k (the two centre columns under the funnel), per layer
 //     k = 1..3, model vs lab (the mean of the two blocks) and its error;
 //   S class agreement per block: no rock / S < 100 % / capped at 100 % (blocks where either class is unknown,
-//     e.g. case 1 without K, are not compared);
+//     e.g. case 1 without K, are not compared), and the S values themselves: the mean absolute error of the
+//     ensemble-mean S (capped) over the blocks where both have one, in pp;
 //   the unmixed-cone check: C >= 90 % in M_221 and M_321 (the crater of unmixed rock under the funnel), for the
 //     model and for the lab (cases 2-3 have one, case 1 does not): reproduced when both have it;
 //   mixed (submerged) and unmixed (above the surface) rock masses, with the lab's recovered rock mass;
@@ -62,6 +63,9 @@ struct BlockScore {
   SClass lab_class = SClass::unknown, model_class = SClass::unknown;
   double model_class_share = 0.0;
   bool class_compared = false, class_agrees = false;
+  double lab_S = 0.0;        // fraction, capped; NaN where the lab has no S (no rock, or no K)
+  Summary model_S;           // over the realizations where S is defined (Ensemble::S)
+  bool S_compared = false;   // both defined
 };
 
 struct CentreLayer {
@@ -83,6 +87,8 @@ struct Score {
   std::vector<CentreLayer> centre;
   double centre_mae_pp = 0.0;
   int classes_compared = 0, classes_agree = 0;
+  int S_compared = 0;             // blocks where lab and model both have an S value
+  double S_mae_pp = 0.0;          // mean |model mean S - lab S| over them (pp); NaN when none
   double no_rock_below = 0.0;  // kg: model blocks with less rock count as 'no rock' in the S classes
   double cone_221 = 0.0, cone_321 = 0.0, lab_cone_221 = 0.0, lab_cone_321 = 0.0;  // fractions
   bool model_cone = false, lab_cone = false;  // C >= 90 % in both M_221 and M_321

@@ -118,6 +118,10 @@ std::string score_table(const Score& s) {
   o += fmt::format("S classes (no rock / S < 100 % / capped; model blocks with < {:g} g rock count as no rock, the "
                    "lab's weighing resolution): {} of {} compared blocks agree\n",
                    1e3 * s.no_rock_below, s.classes_agree, s.classes_compared);
+  o += s.S_compared ? fmt::format("S values (void filling, capped at 100 %): mean absolute error {:.1f} pp over the {} "
+                                  "blocks where lab and model both have one\n",
+                                  s.S_mae_pp, s.S_compared)
+                    : "S values: no block where lab and model both have one (no K, or no rock)\n";
   const char* verdict = s.model_cone == s.lab_cone ? (s.lab_cone ? "reproduced" : "agrees (no cone in either)")
                         : (s.lab_cone ? "NOT reproduced" : "the model has a cone the lab does not");
   o += fmt::format("unmixed cone (C >= 90 % in M_221 and M_321): model {} ({} %, {} %), lab {} ({} %, {} %): {}\n",
@@ -141,12 +145,14 @@ std::string score_table(const Score& s) {
 std::string score_csv(const Score& s) {
   std::string o =
       "block_id,i,j,k,lab_C_percent,model_C_mean_percent,model_C_sd_percent,C_error_pp,lab_S_class,model_S_class,"
-      "model_S_class_share,S_class_agrees\n";
+      "model_S_class_share,S_class_agrees,lab_S_percent,model_S_mean_percent,model_S_sd_percent,model_S_n,S_error_pp\n";
   for (const auto& b : s.blocks)
-    o += fmt::format("{},{},{},{},{:.4f},{:.4f},{:.4f},{:.4f},{},{},{:.3f},{}\n", b.id, b.i, b.j, b.k, 100 * b.lab_C,
-                     100 * b.model_C.mean, 100 * b.model_C.sd, b.error_pp, to_string(b.lab_class),
-                     to_string(b.model_class), b.model_class_share,
-                     b.class_compared ? (b.class_agrees ? "yes" : "no") : "not compared");
+    o += fmt::format("{},{},{},{},{:.4f},{:.4f},{:.4f},{:.4f},{},{},{:.3f},{},{:.4f},{:.4f},{:.4f},{},{:.4f}\n", b.id, b.i,
+                     b.j, b.k, 100 * b.lab_C, 100 * b.model_C.mean, 100 * b.model_C.sd, b.error_pp,
+                     to_string(b.lab_class), to_string(b.model_class), b.model_class_share,
+                     b.class_compared ? (b.class_agrees ? "yes" : "no") : "not compared", 100 * b.lab_S,
+                     100 * b.model_S.mean, 100 * b.model_S.sd, b.model_S.n,
+                     b.S_compared ? 100 * (b.model_S.mean - b.lab_S) : std::nan(""));
   return o;
 }
 
@@ -201,6 +207,7 @@ std::string score_section_toml(const Score& s) {
   o += fmt::format("realization_C_mean_abs_error_pp = {}  # mean over single realizations\n"
                    "realization_C_mean_abs_error_sd_pp = {}\n",
                    toml_number(s.realization_mae_pp.mean), toml_number(s.realization_mae_pp.sd));
+  o += fmt::format("S_values_compared = {}\nS_mean_abs_error_pp = {}\n", s.S_compared, toml_number(s.S_mae_pp));
   o += fmt::format("centre_column_mean_abs_error_pp = {}\nS_classes_compared = {}\nS_classes_agree = {}\n"
                    "S_no_rock_below_g = {}  # model blocks with less rock count as 'no rock' (lab resolution)\n\n",
                    toml_number(s.centre_mae_pp), s.classes_compared, s.classes_agree, toml_number(1e3 * s.no_rock_below));

@@ -36,12 +36,7 @@ std::array<double, 3> layer_rock(const fs::path& h5, const analysis::BlockLayout
   const analysis::ResultSnapshot r = analysis::read_result(h5, {});
   const analysis::Motion motion = analysis::motion_of(r, {});
   if (!motion.at_rest()) throw RuntimeFailure(motion.refusal(r));
-  analysis::MixingInputs in;
-  in.layout = layout;
-  in.surface_z = r.surface_z.value;
-  in.paste_density = r.paste_density.value;
-  in.solids_fraction = r.solids_fraction.value;
-  in.escaped_mass = r.escaped_mass;
+  const analysis::MixingInputs in = analysis::mixing_inputs(r, layout);
   const analysis::MixingMap m = analysis::mixing_map(in, analysis::ParticleView{r.position, r.radius, r.density});
   std::array<double, 3> out{};
   for (int i = 1; i <= layout.count[0]; ++i)

@@ -54,12 +54,7 @@ Mapped map_result(const fs::path& h5, const analysis::BlockLayout& layout, doubl
   m.result = analysis::read_result(h5, {});
   const analysis::Motion motion = analysis::motion_of(m.result, {});
   if (!motion.at_rest()) throw RuntimeFailure(motion.refusal(m.result));
-  analysis::MixingInputs in;
-  in.layout = layout;
-  in.surface_z = m.result.surface_z.value;
-  in.paste_density = m.result.paste_density.value;
-  in.solids_fraction = m.result.solids_fraction.value;
-  in.escaped_mass = m.result.escaped_mass;
+  analysis::MixingInputs in = analysis::mixing_inputs(m.result, layout);
   in.K = K;
   const auto& r = m.result;
   m.map = analysis::mixing_map(in, analysis::ParticleView{r.position, r.radius, r.density});

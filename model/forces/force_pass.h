@@ -18,8 +18,9 @@
 // optionally
 //   prepare(step)       once per step and thread, before the pair pass (the walls' positions at t; the fluid
 //                       field's update, on one thread, with its barrier);
-//   lists_rebuilt(), particles_removed()  after a neighbour rebuild / an outflow removal (the fluid field's
-//                       candidate list and per-particle arrays);
+//   lists_rebuilt(), particles_removed() or particles_removed(map, count)  after a neighbour rebuild / an
+//                       outflow removal (the fluid field's candidate list and per-particle arrays; the flow
+//                       coupling's, renamed through the map);
 //   particles_moved(map)  after the World's spatial sort (map: old -> new dense index, a permutation): a pass
 //                       with per-particle state moves it with the particles.
 // Each particle's operations stay its own and in the same order (pair forces, then the force passes in
@@ -67,8 +68,9 @@ struct PassStep {
   const std::vector<Wall>& walls;
   WallContacts& wall_contacts;
   Particles& p;
-  const PairList& pairs;
+  PairList& pairs;  // the flow pass refreshes ghost copies of velocities it changed (forces/flow_forces.h)
   int thread = 0;
+  int parity = 0;   // the ghost buffer this step's pair pass reads (PairList::ghost)
 };
 
 template <class P>

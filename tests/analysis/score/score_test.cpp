@@ -141,3 +141,33 @@ TEST_CASE("score: rock per layer and the deep share, lab and model") {
   CHECK(score_toml(s, "sw", "cmd", "t", "lab.h5").find("lab_deep_share = ") != std::string::npos);
   CHECK(score_table(s).find("deep share (rock in layers 2-3 / rock in all blocks): lab ") != std::string::npos);
 }
+
+TEST_CASE("score: S values are scored where lab and model both have one") {
+  ScratchDir d("score_S");
+  write_result(d / "r.h5", synthetic_result());
+  const MixingMap m = map_of(d / "r.h5", 100.0);  // a small K: S below its cap in the rock blocks
+  int defined = 0;
+  for (std::size_t b = 0; b < 36; ++b) defined += std::isfinite(m.S[b]) && m.rock_mass[b] >= kLabMassResolution;
+  REQUIRE(defined >= 2);
+  write_lab(d / "lab.h5", lab_equal_to(m, 0.0));
+  const Score same = score_against_lab(read_lab_case(d / "lab.h5", 3, true), {m}, {Realization{}});
+  CHECK(same.S_compared == defined);
+  CHECK(same.S_mae_pp == 0.0);
+  // The lab's S 0.2 lower in every block that has one (and cannot go below 0): 20 pp off, by block and in all.
+  LabSpec shifted = lab_equal_to(m, 0.0);
+  double want = 0.0;
+  int n = 0;
+  for (std::size_t b = 0; b < 36; ++b)
+    if (std::isfinite(shifted.S[b]) && m.rock_mass[b] >= kLabMassResolution) {
+      shifted.S[b] = std::max(0.0, shifted.S[b] - 0.2);
+      want += 100.0 * (m.S[b] - shifted.S[b]);
+      ++n;
+    }
+  write_lab(d / "lab2.h5", shifted);
+  const Score s = score_against_lab(read_lab_case(d / "lab2.h5", 3, true), {m}, {Realization{}});
+  CHECK(s.S_compared == n);
+  CHECK(s.S_mae_pp == doctest::Approx(want / n).epsilon(1e-9));
+  CHECK(score_table(s).find("S values (void filling") != std::string::npos);
+  CHECK(score_toml(s, "sw", "cmd", "t", "lab.h5").find("S_values_compared = " + std::to_string(n)) != std::string::npos);
+  CHECK(score_csv(s).find("S_error_pp") != std::string::npos);
+}
