@@ -246,6 +246,11 @@ void CoupledFlow::flow_interval(CoupledParticles& p, double T, const Start& s0, 
     const double V = sphere_volume(p.d[i]);
     for (int c = 0; c < 3; ++c) pending_[i][c] = -V * (a[c] + b[c]);
   }
+  // The sub-cycle's mean paste drag (N), whichever DEM ran it (cycle() or the engine's kicks through drag_step):
+  // the next drag_at_start takes its own pressure k F_d out of the pending force (the own hole).
+  drag_.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+    for (int c = 0; c < 3; ++c) drag_[i][c] = sub[i][c] / T;
   pending_interval_ = T;
   x_flow_ = p.x;
 }
@@ -261,8 +266,6 @@ CycleStats CoupledFlow::cycle(CoupledParticles& p, int steps, double dt, const E
   for (int k = 0; k < steps; ++k)
     for (std::size_t i = 0; i < n; ++i) dem_step(p, i, dt, steps, extra, s0, sub, st);
   flow_interval(p, steps * dt, s0, sub, st);
-  for (std::size_t i = 0; i < n; ++i)
-    for (int c = 0; c < 3; ++c) drag_[i][c] = sub[i][c] / (steps * dt);
   return st;
 }
 

@@ -13,7 +13,7 @@
 //      (grad p = rho_f g) and V_p (rho_mix - rho_f) g downward in a uniform suspension (its Stokeslet is then
 //      the buoyant weight V_p (rho_p - rho_f) g, Batchelor 1972, of which the drag is eps); grad p is the
 //      undisturbed one: the pending pressure force of the last interval less the particle's own part k F_d
-//      (drag.h), F_d its drag over the last sub-cycle.
+//      (drag.h), F_d its drag over the last sub-cycle (however the DEM ran it: cycle() or the engine's kicks).
 //   2. DEM sub-cycle, each step: v += (m g + P / T + f_extra) dt / m (P: the pending pressure impulse, below);
 //      the velocity-dependent drag implicit against u_p (backward Euler, stable at any beta dt / m); the yield
 //      part in the same update (it removes at most F_y dt / (1 + beta dt / m) of momentum, never reversing the
@@ -100,13 +100,19 @@ class CoupledFlow {
   void finish(CoupledParticles& p, double T, const Start& s0, const std::vector<Vec>& sub, CycleStats& st) {
     flow_interval(p, T, s0, sub, st);
   }
-  // What the coupling keeps between cycles (the engine's checkpoint and renumbering): the positions of the last
-  // flow step and the pending pressure impulses, per particle.
+  // What the coupling keeps between cycles (the engine's checkpoint and renumbering): per particle the positions
+  // of the last flow step, the pending pressure impulses (N s) and the mean paste drag of the last sub-cycle (N);
+  // the interval the impulses were summed over (s; 0 before the first flow step). The next begin() reads all of
+  // them (the disturbance correction's own hole, drag_at_start).
   struct State {
-    std::vector<Vec> x_flow, pending;
+    std::vector<Vec> x_flow, pending, drag;
+    double interval = 0.0;
   };
-  State state() const { return {x_flow_, pending_}; }
-  void restore(State s) { x_flow_ = std::move(s.x_flow), pending_ = std::move(s.pending); }
+  State state() const { return {x_flow_, pending_, drag_, pending_interval_}; }
+  void restore(State s) {
+    x_flow_ = std::move(s.x_flow), pending_ = std::move(s.pending), drag_ = std::move(s.drag);
+    pending_interval_ = s.interval;
+  }
 
   const std::vector<std::array<double, 3>>& pending_impulse() const { return pending_; }  // N s per particle
   // N s: sum over faces of eps_f rho_f V u (the fluid's momentum, the masses the flow step ends with).
