@@ -13,7 +13,9 @@
 //      (grad p = rho_f g) and V_p (rho_mix - rho_f) g downward in a uniform suspension (its Stokeslet is then
 //      the buoyant weight V_p (rho_p - rho_f) g, Batchelor 1972, of which the drag is eps); grad p is the
 //      undisturbed one: the pending pressure force of the last interval less the particle's own part k F_d
-//      (drag.h), F_d its drag over the last sub-cycle (however the DEM ran it: cycle() or the engine's kicks).
+//      (drag.h), F_d its drag over the last sub-cycle (however the DEM ran it: cycle() or the engine's kicks),
+//      and rho_f g the faces' (the same kernel faces and weights as grad p: 0 at rest across a free surface
+//      too). g0 is the one the drag's correction used (DragCoefficients::mobility: none where it is held).
 //   2. DEM sub-cycle, each step: v += (m g + P / T + f_extra) dt / m (P: the pending pressure impulse, below);
 //      the velocity-dependent drag implicit against u_p (backward Euler, stable at any beta dt / m); the yield
 //      part in the same update (it removes at most F_y dt / (1 + beta dt / m) of momentum, never reversing the

@@ -156,9 +156,12 @@ DragCoefficients drag_coefficients(const SphereDrag& law, double diameter, doubl
     // wider than the sphere (the grid would then resolve it). Held at 0.9 (a factor 10), for kernels near
     // the minimum width on cells much smaller than the sphere. The disturbance's own pressure adds k F_p
     // (drag.h): F_p (1 + k) = beta (u_f + g0 F_p - v).
-    beta /= 1.0 + own_pressure - std::min(0.9, beta * self_mobility(diameter, width_factor, cell, viscosity));
+    const double g0 = self_mobility(diameter, width_factor, cell, viscosity);
+    const bool held = beta * g0 >= 0.9;
+    beta /= 1.0 + own_pressure - (held ? 0.9 : beta * g0);
+    return {beta, law.rest, held ? 0.0 : g0};
   }
-  return {beta, law.rest};
+  return {beta, law.rest, 0.0};
 }
 
 }  // namespace pastemix::coupling

@@ -116,6 +116,25 @@ TEST_CASE("coupling drag: the kernel's self-mobility against Monte Carlo and the
   CHECK(kp.beta == doctest::Approx(beta / (1.02 - beta * g0)).epsilon(1e-9));
 }
 
+TEST_CASE("coupling drag: the correction's mobility (for the own hole) is g0, and none where beta g0 is held or off") {
+  const double d = 0.01, c = 2.0, mu = 0.7, h = 0.01;
+  const model::NewtonianStokes::Params paste{1843.0, mu};
+  const drag::DragCurve stokes{drag::CurveId::stokes, {}};
+  const SphereDrag law = registry_drag<model::NewtonianStokes>(paste, stokes, d, 0.0, 0.0, mu);
+  const double beta = 3.0 * pi * mu * d;
+  const DragClosure on{false, true};
+  const auto paste_side = coupling::drag_coefficients(law, d, c, 0.01, 1.0, mu, {h, h, h}, on, 0.0);
+  CHECK(paste_side.mobility == coupling::self_mobility(d, c, {h, h, h}, mu));
+  // The kernel in the air (its local viscosity 1.8e-5 Pa s, the paste's drag law): beta g0 ~ 2e4, held at 0.9;
+  // the hole's mobility is then none (with g0 the hole's velocity was metres per second at a free surface).
+  const double air = 1.8e-5;
+  CHECK(beta * coupling::self_mobility(d, c, {h, h, h}, air) > 0.9);
+  const auto air_side = coupling::drag_coefficients(law, d, c, 0.01, 1.0, air, {h, h, h}, on, 0.0);
+  CHECK(air_side.beta == doctest::Approx(beta / (1.0 - 0.9)).epsilon(1e-9));
+  CHECK(air_side.mobility == 0.0);
+  CHECK(coupling::drag_coefficients(law, d, c, 0.01, 1.0, mu, {h, h, h}, DragClosure{false, false}, 0.0).mobility == 0.0);
+}
+
 TEST_CASE("coupling drag: the disturbance's own pressure share tends to V_p int K^2 / 3 on fine cells") {
   // Continuum: int k^2 = 3 / (5 a) per axis, so V_p (3 / (5 a))^3 / 3; c = 2 (a = d): 27 pi / 2250 = 0.0377.
   const double d = 0.01, c = 2.0, a = 0.5 * c * d;
