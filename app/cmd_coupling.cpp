@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // `pastemix validate coupling sphere | piston | hindered`: the coupling's cases (model/coupling, issue 18) with their
 // references; the figures of model/coupling/VALIDATION.md. One thread (the cases are serial).
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -31,9 +32,20 @@ void print_sphere(const SphereSettings& s, const SphereResult& r) {
     return;
   }
   fmt::print("sphere h/d {:g}, L/d {:g}, disturbance correction {}: slip {:.5g} m/s [{:.5g}, {:.5g}] against "
-             "Hasimoto {:.5g} (Stokes {:.5g}): error {:+.2f} %, Re {:.3g}, {} cells, {} cycles, {:.2f} s\n",
+             "Hasimoto {:.5g} (Stokes {:.5g}): error {:+.2f} %, resolved pressure force {:+.2f} % of the drag, Re {:.3g}, "
+             "{} cells, {} cycles, {:.2f} s\n",
              s.cell_over_diameter, s.box_over_diameter, s.disturbance ? "on" : "off", r.velocity, r.slip_min,
-             r.slip_max, r.reference, r.stokes, 100.0 * r.error, r.reynolds, r.cells, r.cycles, r.seconds);
+             r.slip_max, r.reference, r.stokes, 100.0 * r.error, 100.0 * r.pressure_share, r.reynolds, r.cells,
+             r.cycles, r.seconds);
+}
+
+void print_hindered(const coupling::HinderedSettings& s, const coupling::HinderedResult& r) {
+  fmt::print("hindered phi {:g} ({} spheres of {:g} mm, {}^3 cells of {:g} mm, voidage {}, seed {}): v_s/v_t {:.4f}, "
+             "n_eff {:.3f} against Richardson-Zaki eps^4.65 = {:.4f} ({:+.1f} %); local slip x eps {:.4f}, carried "
+             "{:+.4f}, beta / closure's {:.4f}, pressure {:+.4f}; {:.2f} s\n",
+             s.solid_fraction, r.spheres, 1e3 * s.diameter, s.cells, 1e3 * s.cell, s.voidage ? "on" : "off", s.seed,
+             r.ratio, r.exponent, r.reference, 100.0 * (r.ratio / r.reference - 1.0), r.local_slip, r.carried,
+             r.beta_ratio, r.pressure_share, r.seconds);
 }
 
 SphereResult sphere_or_input_error(const SphereSettings& s) {
@@ -88,14 +100,31 @@ void register_coupling_commands(CLI::App& app) {
   CLI::App* hin = cpl->add_subcommand("hindered", "a uniform suspension settling vs Richardson-Zaki (reported)");
   hin->add_option("--phi", hs->solid_fraction, "solid fraction (default 0.1)")->check(CLI::Range(0.01, 0.4));
   hin->add_flag("--no-voidage", *no_voidage, "without Di Felice's voidage correction");
-  hin->callback([hs, no_voidage] {
+  auto no_disturbance = std::make_shared<bool>(false);
+  hin->add_flag("--no-disturbance", *no_disturbance, "without the disturbance (self-induced velocity) correction");
+  hin->add_option("--cells", hs->cells, "cells per axis (default 8)")->check(CLI::PositiveNumber);
+  hin->add_option("--cell", hs->cell, "cubic cell, m (default 0.02)")->check(CLI::PositiveNumber);
+  hin->add_option("--diameter", hs->diameter, "sphere diameter, m (default 0.005)")->check(CLI::PositiveNumber);
+  hin->add_option("--width", hs->width_factor, "kernel width factor c (default 2)")->check(CLI::PositiveNumber);
+  hin->add_option("--seed", hs->seed, "seed of the sphere positions (default 5)");
+  auto seeds = std::make_shared<int>(1);
+  hin->add_option("--seeds", *seeds, "realizations, seeds seed .. seed + N - 1, and their mean (default 1)")
+      ->check(CLI::PositiveNumber);
+  hin->callback([hs, no_voidage, no_disturbance, seeds] {
     coupling::HinderedSettings s = *hs;
     s.voidage = !*no_voidage;
-    const coupling::HinderedResult r = coupling::run_hindered(s);
-    fmt::print("hindered phi {:g} ({} spheres of {:g} mm, {}^3 cells of {:g} mm, voidage {}): v_s/v_t {:.4f}, "
-               "n_eff {:.3f} against Richardson-Zaki eps^4.65 = {:.4f}, {:.2f} s\n",
-               s.solid_fraction, r.spheres, 1e3 * s.diameter, s.cells, 1e3 * s.cell, s.voidage ? "on" : "off", r.ratio,
-               r.exponent, r.reference, r.seconds);
+    s.disturbance = !*no_disturbance;
+    double sum = 0.0;
+    for (int k = 0; k < *seeds; ++k, ++s.seed) {
+      const coupling::HinderedResult r = coupling::run_hindered(s);
+      sum += r.ratio;
+      print_hindered(s, r);
+    }
+    if (*seeds > 1) {
+      const double eps = 1.0 - s.solid_fraction, mean = sum / *seeds, rz = std::pow(eps, 4.65);
+      fmt::print("hindered phi {:g}, mean of {} seeds: v_s/v_t {:.4f} against {:.4f} ({:+.1f} %), n_eff {:.3f}\n",
+                 s.solid_fraction, *seeds, mean, rz, 100.0 * (mean / rz - 1.0), std::log(mean) / std::log(eps));
+    }
   });
 
   CLI::App* pis = cpl->add_subcommand("piston", "a glued block pushed into the paste: the surface rise (no DEM)");

@@ -31,7 +31,7 @@ namespace pastemix::model {
 namespace {
 
 // Bumped whenever a stored member is added, removed or reordered.
-constexpr char kMagic[] = "pastemix-checkpoint-v3";
+constexpr char kMagic[] = "pastemix-checkpoint-v4";
 
 // The members in one fixed order, for both directions: io(x) is put(x) or get(x).
 template <class IO>

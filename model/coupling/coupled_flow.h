@@ -6,7 +6,16 @@
 // One cycle of `steps` DEM steps of dt (the coupling interval T = steps dt):
 //   1. Drag coefficients at the cycle's start (drag.h: the particle's law on the slip v - W u^n, the voidage the
 //      others leave, the disturbance correction), u_p = W u^n frozen (the exchange's masked weights, scaled by
-//      the particle's paste share).
+//      the particle's paste share). With the disturbance correction u_p also loses what the particle's own
+//      displaced fluid induces at it, g0 f_hole with f_hole = -V_p (rho_f g - grad p) (model A gives the fluid
+//      its body and pressure forces on eps_f only, so the particle's volume is a hole in them; the undisturbed
+//      flow of Maxey & Riley 1983 is the flow with fluid in the particle's place). It is 0 in a paste at rest
+//      (grad p = rho_f g) and V_p (rho_mix - rho_f) g downward in a uniform suspension (its Stokeslet is then
+//      the buoyant weight V_p (rho_p - rho_f) g, Batchelor 1972, of which the drag is eps); grad p is the
+//      undisturbed one: the pending pressure force of the last interval less the particle's own part k F_d
+//      (drag.h), F_d its drag over the last sub-cycle (however the DEM ran it: cycle() or the engine's kicks),
+//      and rho_f g the faces' (the same kernel faces and weights as grad p: 0 at rest across a free surface
+//      too). g0 is the one the drag's correction used (DragCoefficients::mobility: none where it is held).
 //   2. DEM sub-cycle, each step: v += (m g + P / T + f_extra) dt / m (P: the pending pressure impulse, below);
 //      the velocity-dependent drag implicit against u_p (backward Euler, stable at any beta dt / m); the yield
 //      part in the same update (it removes at most F_y dt / (1 + beta dt / m) of momentum, never reversing the
@@ -82,6 +91,7 @@ class CoupledFlow {
   struct Start {
     std::vector<Vec> u;
     std::vector<double> share, beta;
+    std::vector<Vec> shift;  // m/s, what the particle's own displaced fluid adds to u_p (removed: drag.h)
   };
   Start begin(const CoupledParticles& p) const { return drag_at_start(p); }
   // Particle i's velocity v (in/out) after a step dt under the force F (N: every force but the paste's drag,
@@ -92,13 +102,19 @@ class CoupledFlow {
   void finish(CoupledParticles& p, double T, const Start& s0, const std::vector<Vec>& sub, CycleStats& st) {
     flow_interval(p, T, s0, sub, st);
   }
-  // What the coupling keeps between cycles (the engine's checkpoint and renumbering): the positions of the last
-  // flow step and the pending pressure impulses, per particle.
+  // What the coupling keeps between cycles (the engine's checkpoint and renumbering): per particle the positions
+  // of the last flow step, the pending pressure impulses (N s) and the mean paste drag of the last sub-cycle (N);
+  // the interval the impulses were summed over (s; 0 before the first flow step). The next begin() reads all of
+  // them (the disturbance correction's own hole, drag_at_start).
   struct State {
-    std::vector<Vec> x_flow, pending;
+    std::vector<Vec> x_flow, pending, drag;
+    double interval = 0.0;
   };
-  State state() const { return {x_flow_, pending_}; }
-  void restore(State s) { x_flow_ = std::move(s.x_flow), pending_ = std::move(s.pending); }
+  State state() const { return {x_flow_, pending_, drag_, pending_interval_}; }
+  void restore(State s) {
+    x_flow_ = std::move(s.x_flow), pending_ = std::move(s.pending), drag_ = std::move(s.drag);
+    pending_interval_ = s.interval;
+  }
 
   const std::vector<std::array<double, 3>>& pending_impulse() const { return pending_; }  // N s per particle
   // N s: sum over faces of eps_f rho_f V u (the fluid's momentum, the masses the flow step ends with).
@@ -118,6 +134,8 @@ class CoupledFlow {
   Exchange exchange_;
   std::vector<std::array<double, 3>> x_flow_;  // m: positions at the last flow step (its eps_f)
   std::vector<std::array<double, 3>> pending_;
+  double pending_interval_ = 0.0;  // s, the interval pending_ was summed over (0: no flow step yet)
+  std::vector<std::array<double, 3>> drag_;  // N, each particle's mean paste drag over the last sub-cycle
 };
 
 }  // namespace pastemix::coupling

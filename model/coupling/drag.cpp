@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -109,13 +110,34 @@ double own_solid_fraction(const flow::Grid& g, const Stencil& s, double diameter
   return volume * prod / g.cell_volume();
 }
 
+double own_pressure_share(const flow::Grid& g, const Stencil& s, double diameter) {
+  if (s.empty()) return 0.0;
+  std::array<double, 3> cells{}, faces{};  // per axis: sum w^2 over the cells, over the faces normal to it
+  for (int d = 0; d < 3; ++d) {
+    std::vector<double> face(static_cast<std::size_t>(g.n[d]) + 1, 0.0);
+    for (const auto& [i, w] : s.axis[d]) {
+      cells[d] += w * w;
+      face[i] += 0.5 * w;
+      face[g.periodic(d) ? (i + 1) % g.n[d] : i + 1] += 0.5 * w;
+    }
+    for (double w : face) faces[d] += w * w;
+  }
+  double sum = 0.0;
+  for (int c = 0; c < 3; ++c) sum += faces[c] * cells[(c + 1) % 3] * cells[(c + 2) % 3];
+  const double volume = std::numbers::pi * diameter * diameter * diameter / 6.0;  // m3
+  return volume * sum / 3.0 / g.cell_volume() / 3.0;
+}
+
 DragCoefficients drag_coefficients(const SphereDrag& law, double diameter, double width_factor, double slip, double eps,
-                                   double viscosity, const std::array<double, 3>& cell, const DragClosure& closure) {
+                                   double viscosity, const std::array<double, 3>& cell, const DragClosure& closure,
+                                   double own_pressure) {
   if (!(slip >= 0.0) || !std::isfinite(slip) || !(eps > 0.0) || !std::isfinite(eps) || !(law.rest >= 0.0) ||
-      !(law.rest_speed >= 0.0 && law.rest_speed < 0.5 * kSlopeSpeed))
-    throw std::invalid_argument(fmt::format("coupling drag: slip {} m/s, fluid fraction {}, rest drag {} N at {} m/s (need a finite "
-                                            "slip >= 0, fluid fraction > 0, rest drag >= 0 at a speed below 5e-10 m/s)",
-                                            slip, eps, law.rest, law.rest_speed));
+      !(law.rest_speed >= 0.0 && law.rest_speed < 0.5 * kSlopeSpeed) || !(own_pressure >= 0.0) ||
+      !std::isfinite(own_pressure))
+    throw std::invalid_argument(fmt::format("coupling drag: slip {} m/s, fluid fraction {}, rest drag {} N at {} m/s, own "
+                                            "pressure share {} (need a finite slip >= 0, fluid fraction > 0, rest drag >= 0 "
+                                            "at a speed below 5e-10 m/s, share >= 0)",
+                                            slip, eps, law.rest, law.rest_speed, own_pressure));
   eps = std::min(eps, 1.0);
   const double e = closure.voidage ? eps : 1.0;
   const double s = std::max(e * slip, kSlopeSpeed);  // m/s, the superficial slip the law is evaluated at
@@ -132,10 +154,14 @@ DragCoefficients drag_coefficients(const SphereDrag& law, double diameter, doubl
     // F_p = beta (u_f + g0 F_p - v) and beta_c = beta / (1 - beta g0). beta g0 = r / a_eff for Stokes drag
     // (a_eff = sigma sqrt(pi), Maxey & Patel's radius of the smoothed force): singular when the smoothing is no
     // wider than the sphere (the grid would then resolve it). Held at 0.9 (a factor 10), for kernels near
-    // the minimum width on cells much smaller than the sphere.
-    beta /= 1.0 - std::min(0.9, beta * self_mobility(diameter, width_factor, cell, viscosity));
+    // the minimum width on cells much smaller than the sphere. The disturbance's own pressure adds k F_p
+    // (drag.h): F_p (1 + k) = beta (u_f + g0 F_p - v).
+    const double g0 = self_mobility(diameter, width_factor, cell, viscosity);
+    const bool held = beta * g0 >= 0.9;
+    beta /= 1.0 + own_pressure - (held ? 0.9 : beta * g0);
+    return {beta, law.rest, held ? 0.0 : g0};
   }
-  return {beta, law.rest};
+  return {beta, law.rest, 0.0};
 }
 
 }  // namespace pastemix::coupling

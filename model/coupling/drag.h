@@ -30,6 +30,15 @@
 //    (sigma^2 = a^2/5 + h^2/12, used before; `sphere` settled 2.4-5.9 % slow with it). mu is the local
 //    viscosity of the flow (the kernel mean of the cells' viscosity): in a regularised plug it is huge and the
 //    correction vanishes, as the fluid there does not move. Non-cubic cells use h = (h_x h_y h_z)^(1/3).
+//    The same reaction also returns to the particle through the pressure: the flow's projection gives the
+//    longitudinal part of the spread force as grad p, and model A hands the particle -V_p grad p (its kernel
+//    mean), k F_d along its drag F_d, k = own_pressure_share (1/3 of the particle's own face-weighted solid
+//    fraction: the longitudinal projector averages to 1/3 over the directions, exact for a force on one face
+//    of a periodic cubic grid and in the continuum, V_p int K^2 / 3). Maxey & Riley (1983, Phys. Fluids 26,
+//    883-889) write the pressure-gradient force with the undisturbed flow; the disturbance's own pressure is
+//    part of the Stokes drag (2 pi mu a U of its 6 pi mu a U), so counted again it over-drags (`sphere`: the
+//    resolved pressure was +1.6 % of the drag at h = d, +3.5 % at h = d/2). With it, F_d (1 + k) =
+//    beta (u_f + g0 F_d - v): beta_c = beta / (1 + k - beta g0).
 #pragma once
 
 #include <array>
@@ -57,6 +66,14 @@ struct DragClosure {
 struct DragCoefficients {
   double beta = 0.0;         // kg/s, velocity-dependent part (F = beta (u_f - v_p))
   double yield_force = 0.0;  // N, bounded yield part (sticks against the frozen fluid)
+  // m/(N s): the self-mobility g0 the disturbance correction used; 0 without the correction and where beta g0
+  // is held at 0.9 (below: the correction is then a bound, not the particle's disturbance). The other force the
+  // particle induces at itself, its own hole (coupled_flow.h), is taken out with this value: with the raw g0
+  // where the correction is held (the air's viscosity at a free surface: g0 ~ 3e5 m/(N s) for a 10 mm sphere)
+  // the hole's velocity was metres per second (the flow tests' air runaways); with the held value 0.9 / beta
+  // the dense block of `piston-dem` (Di Felice's factor puts it past the hold), at rest after the push, kept a
+  // 5 mm/s shift through its own pressure and dragged the paste down (rise +24 % at 1 cm cells; VALIDATION.md).
+  double mobility = 0.0;
 };
 
 // Di Felice's exponent at Reynolds number re (> 0; re -> 0 gives 3.7).
@@ -70,11 +87,16 @@ double self_mobility(double diameter, double width_factor, const std::array<doub
 // The kernel mean of the particle's own solid fraction: V_p sum_c w_pc^2 / V_cell (its own share of the
 // interpolated eps_s, removed before the voidage correction).
 double own_solid_fraction(const flow::Grid& g, const Stencil& s, double diameter);
+// k of the disturbance's pressure (above): V_p prod_axes sum w^2 / V_cell / 3, along each component with the
+// face weights (w_pc / 2 to the cell's two faces), the mean of the three components.
+double own_pressure_share(const flow::Grid& g, const Stencil& s, double diameter);
 
 // slip: |v_p - u_f(x_p)| (m/s); eps: the fluid fraction the others leave (clamped to (0, 1]); viscosity: local
-// (Pa s), for the disturbance; cell: the grid's h. Throws std::invalid_argument on a negative slip, eps <= 0,
-// non-finite inputs or a decreasing D.
+// (Pa s), for the disturbance; cell: the grid's h; own_pressure: k (own_pressure_share; 0 where the particle's
+// reaction does not reach the flow's pressure). Throws std::invalid_argument on a negative slip, eps <= 0, a
+// negative k, non-finite inputs or a decreasing D.
 DragCoefficients drag_coefficients(const SphereDrag& law, double diameter, double width_factor, double slip, double eps,
-                                   double viscosity, const std::array<double, 3>& cell, const DragClosure& closure);
+                                   double viscosity, const std::array<double, 3>& cell, const DragClosure& closure,
+                                   double own_pressure);
 
 }  // namespace pastemix::coupling

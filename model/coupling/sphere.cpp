@@ -67,8 +67,7 @@ SphereResult run_sphere(const SphereSettings& s) {
   cs.gravity = {0.0, 0.0, -kG};
   CoupledFlow cf(flow, cs);
   CoupledParticles p;
-  // Off the cell lattice's symmetry points, so that the answer is not a lucky alignment.
-  p.x = {{0.37 * L, 0.41 * L, 0.53 * L}};
+  p.x = {{s.start[0] * L, s.start[1] * L, s.start[2] * L}};
   p.v = {{0.0, 0.0, 0.0}};
   p.d = {d};
   p.m = {m_p};
@@ -87,7 +86,7 @@ SphereResult run_sphere(const SphereSettings& s) {
   const double window = tau_y > 0.0 ? settle : h / r.reference;
   const int settle_cycles = static_cast<int>(std::ceil(settle / s.coupling_interval));
   const int cycles = settle_cycles + static_cast<int>(std::ceil(window / s.coupling_interval));
-  double sum = 0.0, z0 = 0.0;
+  double sum = 0.0, z0 = 0.0, pressure_sum = 0.0;
   r.slip_min = INFINITY, r.slip_max = -INFINITY;
   const double fluid_mass = M - m_p;
   double z_unwrapped = p.x[0][2];
@@ -103,12 +102,14 @@ SphereResult run_sphere(const SphereSettings& s) {
     const double slip = -(p.v[0][2] - fluid_mean);  // m/s, downward positive
     r.max_speed_late = std::max(r.max_speed_late, std::hypot(p.v[0][0], p.v[0][1], p.v[0][2]));
     sum += slip;
+    pressure_sum += cf.pending_impulse()[0][2] / s.coupling_interval;  // N, upward positive
     r.slip_min = std::min(r.slip_min, slip);
     r.slip_max = std::max(r.slip_max, slip);
   }
   r.cycles = cycles;
   r.velocity = sum / (cycles - settle_cycles);
   r.travel = z0 - z_unwrapped;
+  r.pressure_share = pressure_sum / (cycles - settle_cycles) / F;
   r.error = r.reference > 0.0 ? r.velocity / r.reference - 1.0 : 0.0;
   r.reynolds = s.rho_fluid * std::abs(r.velocity) * d / s.viscosity;
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

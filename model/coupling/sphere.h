@@ -15,6 +15,8 @@
 // = 0.044 the sphere sticks (it must stay at rest: no creep through the coupling), below it moves.
 #pragma once
 
+#include <array>
+
 namespace pastemix::coupling {
 
 struct SphereSettings {
@@ -32,6 +34,9 @@ struct SphereSettings {
   // reference velocity (the drag varies with the sphere's place in its cell; Bingham: the settling time again).
   double settle_time = 0.0;         // s
   double coupling_interval = 0.005;  // s: one DEM step per flow step
+  // The start, in box lengths: off the cell lattice's symmetry points, so that the answer is not a lucky
+  // alignment (x and y stay; z is averaged over a cell's travel).
+  std::array<double, 3> start{0.37, 0.41, 0.53};
 };
 
 struct SphereResult {
@@ -43,6 +48,9 @@ struct SphereResult {
   double max_speed_late = 0.0;  // m/s, max |v_p| over the window (Bingham: the creep)
   double travel = 0.0;          // m, how far the sphere settled over the window
   double reynolds = 0.0;      // -, rho_f U d / mu
+  // -, the resolved pressure's force on the sphere (model A's -V_p grad p beyond the mean gradient) over the
+  // window, upward positive, over F: what the sphere's own reaction's pressure adds to its drag.
+  double pressure_share = 0.0;
   int cells = 0, cycles = 0;
   double seconds = 0.0;       // wall time
 };

@@ -214,10 +214,10 @@ void FlowCoupling::renumber(const std::vector<std::uint32_t>& map, std::size_t c
   remap(cp.x, map, count), remap(cp.v, map, count), remap(cp.d, map, count), remap(cp.m, map, count);
   remap(cp.drag, map, count);
   auto& st = s_->start;
-  remap(st.u, map, count), remap(st.share, map, count), remap(st.beta, map, count);
+  remap(st.u, map, count), remap(st.share, map, count), remap(st.beta, map, count), remap(st.shift, map, count);
   remap(s_->impulse, map, count), remap(member_, map, count);
   coupling::CoupledFlow::State c = s_->coupled.state();
-  remap(c.x_flow, map, count), remap(c.pending, map, count);
+  remap(c.x_flow, map, count), remap(c.pending, map, count), remap(c.drag, map, count);
   s_->coupled.restore(std::move(c));
   members_.clear();
   for (std::size_t a = 0; a < member_.size(); ++a)
@@ -242,8 +242,8 @@ void pack_state(IO& io, S& st, C& coupled, std::vector<char>& member, std::vecto
     for (auto& c : f) io(c);
   };
   io(member), io(list), io(step), io(cycles);
-  io(st.p.x), io(st.p.v), io(st.start.u), io(st.start.share), io(st.start.beta), io(st.impulse), io(st.last);
-  io(coupled.x_flow), io(coupled.pending);
+  io(st.p.x), io(st.p.v), io(st.start.u), io(st.start.share), io(st.start.beta), io(st.start.shift), io(st.impulse);
+  io(st.last), io(coupled.x_flow), io(coupled.pending), io(coupled.drag), io(coupled.interval);
   auto& f = st.flow;
   faces(f.u), faces(f.continuity_impulse), faces(f.pressure_impulse);
   io(f.p), io(f.alpha), io(f.mu), io(f.eps), io(f.eps_next), io(f.with_rate), io(f.pressure_ready), io(f.t);

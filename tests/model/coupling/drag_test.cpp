@@ -47,7 +47,7 @@ TEST_CASE("coupling drag: Bingham-Dedegil on the Stokes curve splits into its cl
   CHECK(law.rest == doctest::Approx(rest).epsilon(1e-9));
   const DragClosure none{false, false};
   for (double slip : {0.0, 1e-6, 0.01, 0.3, 2.0}) {
-    const auto c = coupling::drag_coefficients(law, d, 2.0, slip, 1.0, 0.7, {0.01, 0.01, 0.01}, none);
+    const auto c = coupling::drag_coefficients(law, d, 2.0, slip, 1.0, 0.7, {0.01, 0.01, 0.01}, none, 0.0);
     CHECK(c.yield_force == doctest::Approx(rest).epsilon(1e-9));
     // At slip 0 the slope is the difference at 1e-9 m/s over a rest part of ~0.2 N: round-off ~3e-7 of it.
     CHECK(c.beta == doctest::Approx(slope).epsilon(slip > 1e-4 ? 1e-9 : 1e-6));
@@ -67,7 +67,7 @@ TEST_CASE("coupling drag: Di Felice's exponent and the voidage factor eps^(1 - c
   for (double eps : {1.0, 0.9, 0.7, 0.45}) {
     const double slip = 1e-4;  // Re = rho eps slip d / mu = 0.1 eps
     const double chi = coupling::di_felice_chi(1000.0 * eps * slip * d / 1e-3);
-    const auto c = coupling::drag_coefficients(law, d, 2.0, slip, eps, 1e-3, {0.01, 0.01, 0.01}, voidage);
+    const auto c = coupling::drag_coefficients(law, d, 2.0, slip, eps, 1e-3, {0.01, 0.01, 0.01}, voidage, 0.0);
     CHECK(c.beta == doctest::Approx(3.0 * pi * 1e-3 * d * std::pow(eps, 1.0 - chi)).epsilon(1e-9));
     CHECK(c.yield_force < 1e-16);  // D(1e-12 m/s): the Stokes rest value, 3 pi mu d 1e-12
   }
@@ -105,12 +105,54 @@ TEST_CASE("coupling drag: the kernel's self-mobility against Monte Carlo and the
   const drag::DragCurve stokes{drag::CurveId::stokes, {}};
   const SphereDrag law = registry_drag<model::NewtonianStokes>(paste, stokes, d, 0.0, 0.0, mu);
   const double beta = 3.0 * pi * mu * d;
-  const auto k = coupling::drag_coefficients(law, d, c, 0.01, 1.0, mu, {h, h, h}, DragClosure{false, true});
+  const auto k = coupling::drag_coefficients(law, d, c, 0.01, 1.0, mu, {h, h, h}, DragClosure{false, true}, 0.0);
   CHECK(beta * g0 < 0.9);
   CHECK(k.beta == doctest::Approx(beta / (1.0 - beta * g0)).epsilon(1e-9));
   // In a regularised plug (viscosity 1e6 times higher) the fluid does not move: no correction left.
-  const auto plug = coupling::drag_coefficients(law, d, c, 0.01, 1.0, mu * 1e6, {h, h, h}, DragClosure{false, true});
+  const auto plug = coupling::drag_coefficients(law, d, c, 0.01, 1.0, mu * 1e6, {h, h, h}, DragClosure{false, true}, 0.0);
   CHECK(plug.beta == doctest::Approx(beta).epsilon(1e-5));
+  // The disturbance's own pressure k (drag.h): beta / (1 + k - beta g0).
+  const auto kp = coupling::drag_coefficients(law, d, c, 0.01, 1.0, mu, {h, h, h}, DragClosure{false, true}, 0.02);
+  CHECK(kp.beta == doctest::Approx(beta / (1.02 - beta * g0)).epsilon(1e-9));
+}
+
+TEST_CASE("coupling drag: the correction's mobility (for the own hole) is g0, and none where beta g0 is held or off") {
+  const double d = 0.01, c = 2.0, mu = 0.7, h = 0.01;
+  const model::NewtonianStokes::Params paste{1843.0, mu};
+  const drag::DragCurve stokes{drag::CurveId::stokes, {}};
+  const SphereDrag law = registry_drag<model::NewtonianStokes>(paste, stokes, d, 0.0, 0.0, mu);
+  const double beta = 3.0 * pi * mu * d;
+  const DragClosure on{false, true};
+  const auto paste_side = coupling::drag_coefficients(law, d, c, 0.01, 1.0, mu, {h, h, h}, on, 0.0);
+  CHECK(paste_side.mobility == coupling::self_mobility(d, c, {h, h, h}, mu));
+  // The kernel in the air (its local viscosity 1.8e-5 Pa s, the paste's drag law): beta g0 ~ 2e4, held at 0.9;
+  // the hole's mobility is then none (with g0 the hole's velocity was metres per second at a free surface).
+  const double air = 1.8e-5;
+  CHECK(beta * coupling::self_mobility(d, c, {h, h, h}, air) > 0.9);
+  const auto air_side = coupling::drag_coefficients(law, d, c, 0.01, 1.0, air, {h, h, h}, on, 0.0);
+  CHECK(air_side.beta == doctest::Approx(beta / (1.0 - 0.9)).epsilon(1e-9));
+  CHECK(air_side.mobility == 0.0);
+  CHECK(coupling::drag_coefficients(law, d, c, 0.01, 1.0, mu, {h, h, h}, DragClosure{false, false}, 0.0).mobility == 0.0);
+}
+
+TEST_CASE("coupling drag: the disturbance's own pressure share tends to V_p int K^2 / 3 on fine cells") {
+  // Continuum: int k^2 = 3 / (5 a) per axis, so V_p (3 / (5 a))^3 / 3; c = 2 (a = d): 27 pi / 2250 = 0.0377.
+  const double d = 0.01, c = 2.0, a = 0.5 * c * d;
+  const double continuum = pi * d * d * d / 6.0 * std::pow(3.0 / (5.0 * a), 3) / 3.0;
+  flow::Grid g;
+  g.n = {64, 64, 64};
+  g.h = {d / 16, d / 16, d / 16};
+  for (auto& b : g.bc) b.type = flow::BoundaryType::periodic;
+  const auto s = coupling::stencil(g, {0.0213, 0.0177, 0.0301}, d, c);
+  CHECK(coupling::own_pressure_share(g, s, d) == doctest::Approx(continuum).epsilon(2e-3));
+  // Coarse cells: the face weights along each component spread the kernel over one cell more, so k falls below
+  // a third of own_solid_fraction (which is the cells' sum alone).
+  g.n = {8, 8, 8};
+  g.h = {d, d, d};
+  const auto coarse = coupling::stencil(g, {0.0296, 0.0328, 0.0424}, d, c);
+  const double k = coupling::own_pressure_share(g, coarse, d);
+  CHECK(k > 0.0);
+  CHECK(k < coupling::own_solid_fraction(g, coarse, d) / 3.0);
 }
 
 TEST_CASE("coupling drag: bad input is an error") {
@@ -118,11 +160,12 @@ TEST_CASE("coupling drag: bad input is an error") {
   const drag::DragCurve stokes{drag::CurveId::stokes, {}};
   const SphereDrag law = registry_drag<model::NewtonianStokes>(water, stokes, 1e-3, 0.0, 0.0, 1e-3);
   const std::array<double, 3> h{0.01, 0.01, 0.01};
-  CHECK_THROWS_AS(coupling::drag_coefficients(law, 1e-3, 2.0, -1.0, 1.0, 1e-3, h, {}), std::invalid_argument);
-  CHECK_THROWS_AS(coupling::drag_coefficients(law, 1e-3, 2.0, NAN, 1.0, 1e-3, h, {}), std::invalid_argument);
-  CHECK_THROWS_AS(coupling::drag_coefficients(law, 1e-3, 2.0, 0.1, 0.0, 1e-3, h, {}), std::invalid_argument);
-  CHECK_THROWS_AS(coupling::drag_coefficients(law, 1e-3, 2.0, 0.1, 1.0, 0.0, h, {}), std::invalid_argument);
+  CHECK_THROWS_AS(coupling::drag_coefficients(law, 1e-3, 2.0, -1.0, 1.0, 1e-3, h, {}, 0.0), std::invalid_argument);
+  CHECK_THROWS_AS(coupling::drag_coefficients(law, 1e-3, 2.0, NAN, 1.0, 1e-3, h, {}, 0.0), std::invalid_argument);
+  CHECK_THROWS_AS(coupling::drag_coefficients(law, 1e-3, 2.0, 0.1, 0.0, 1e-3, h, {}, 0.0), std::invalid_argument);
+  CHECK_THROWS_AS(coupling::drag_coefficients(law, 1e-3, 2.0, 0.1, 1.0, 0.0, h, {}, 0.0), std::invalid_argument);
+  CHECK_THROWS_AS(coupling::drag_coefficients(law, 1e-3, 2.0, 0.1, 1.0, 1e-3, h, {}, -0.01), std::invalid_argument);
   SphereDrag bad = law;
   bad.rest = 1.0;  // above D(s) at small s: a decreasing law
-  CHECK_THROWS_AS(coupling::drag_coefficients(bad, 1e-3, 2.0, 1e-6, 1.0, 1e-3, h, {}), std::invalid_argument);
+  CHECK_THROWS_AS(coupling::drag_coefficients(bad, 1e-3, 2.0, 1e-6, 1.0, 1e-3, h, {}, 0.0), std::invalid_argument);
 }
