@@ -56,8 +56,20 @@ void FluidField::refresh(const Particles& p, Lane& lane, const std::vector<std::
 template <class List, class F>
 void FluidField::merged(List&& list, std::vector<std::size_t>& head, F&& f) const {
   const std::size_t lanes = lanes_.size();
-  if (lanes == 1) {
-    for (std::size_t q = 0; q < list(lanes_[0]).size(); ++q) f(lanes_[0], q);
+  // Lanes whose lists follow each other (every particle of one below every particle of the next: the
+  // World's slabs after its spatial sort) are read one after the other, without comparisons.
+  bool ordered = true;
+  long last = -1;
+  for (std::size_t t = 0; t < lanes && ordered; ++t) {
+    const auto& l = list(lanes_[t]);
+    if (l.empty()) continue;
+    ordered = l.front() > last, last = l.back();
+  }
+  if (ordered) {
+    for (std::size_t t = 0; t < lanes; ++t) {
+      const std::size_t n = list(lanes_[t]).size();
+      for (std::size_t q = 0; q < n; ++q) f(lanes_[t], q);
+    }
     return;
   }
   // A k-way merge of ascending lists (head: [0, lanes) next entry, [lanes, 2 lanes) length), read once per
