@@ -12,6 +12,8 @@
 #include "model/coupling/hindered.h"
 #include "model/coupling/piston.h"
 #include "model/coupling/sphere.h"
+#include "model/fluid/flow_piston.h"
+#include "model/fluid/flow_stability.h"
 
 namespace pastemix::app {
 
@@ -108,6 +110,45 @@ void register_coupling_commands(CLI::App& app) {
                "alpha in [{:.3g}, {:.6g}], {:.2f} s\n",
                s.cell, o->toy ? " (toy: no d eps_f/dt)" : "", 1e3 * r.rise_measured, 1e3 * r.rise_expected,
                r.relative_error, r.volume_error, r.alpha_min, r.alpha_max, r.seconds);
+  });
+
+  for (const char* name : {"bed", "stream"}) {
+    CLI::App* st = cpl->add_subcommand(name, std::string(name) == "bed"
+                                                 ? "a packed bed at rest in the paste: no energy growth, no NaN"
+                                                 : "a dense stream falling through air into the paste: no energy growth, no NaN");
+    auto ss = std::make_shared<model::fluid::StabilitySettings>();
+    ss->name = name;
+    st->add_option("--layers", ss->layers, "bed: spheres per side; stream: spheres / 10 (default 4)")->check(CLI::PositiveNumber);
+    st->add_option("--relaxations", ss->relaxations, "DEM step over the drag relaxation time (default 10)")->check(CLI::PositiveNumber);
+    st->add_option("--intervals", ss->interval, "DEM steps per flow interval (default 1)")->check(CLI::PositiveNumber);
+    st->add_option("--time", ss->time, "simulated time, s (default 0.02)")->check(CLI::PositiveNumber);
+    st->add_option("--cell", ss->cell, "cubic cell, m (default 0.01)")->check(CLI::PositiveNumber);
+    st->callback([ss] {
+      const model::fluid::StabilityResult r = model::fluid::run_stability(*ss);
+      fmt::print("{} {} spheres of {:g} mm, DEM step {:.3g} s = {:g} tau (tau {:.3g} s, paste {:.4g} Pa s), interval {}: "
+                 "energy growth {:.3g} J = {:.3g} of the budget K(0) + released (<= 0: none; K(end) {:.3g} J, released {:.3g} J), max sphere speed {:.3g} m/s, "
+                 "paste volume error {:.3g}, {} steps, {} cycles, {:.2f} s\n",
+                 ss->name, r.spheres, 1e3 * ss->diameter, r.dt, ss->relaxations, r.tau, r.viscosity, ss->interval,
+                 r.growth, r.growth / r.budget, r.kinetic_end, r.released_end, r.max_speed, r.paste_volume_error, r.steps, r.cycles, r.seconds);
+    });
+  }
+
+  CLI::App* dem = cpl->add_subcommand("piston-dem", "the piston's 27 spheres as DEM particles through the engine "
+                                                    "(a dynamics = \"flow\" scene): the surface rise");
+  auto ds = std::make_shared<model::fluid::DemPistonSettings>();
+  dem->add_option("--cell", ds->cell, "cubic cell, m (default 0.005)")->check(CLI::PositiveNumber);
+  dem->add_option("--dt", ds->time_step, "DEM step, s (default 1e-4)")->check(CLI::PositiveNumber);
+  dem->add_option("--eta", ds->eta, "paste viscosity, Pa s (default 5)")->check(CLI::PositiveNumber);
+  dem->add_option("--settle", ds->settle_time, "s the block is held after the push (default 1)")->check(CLI::PositiveNumber);
+  dem->add_option("--interval", ds->coupling_interval, "DEM steps per flow interval (default 50)")->check(CLI::PositiveNumber);
+  dem->callback([ds] {
+    const model::fluid::DemPistonResult r = model::fluid::run_dem_piston(*ds);
+    fmt::print("piston-dem {:g} m cells, DEM step {:g} s x {}: rise {:.5g} mm (expected {:.5g} mm, error {:.3g}), "
+               "paste volume error {:.3g}, free-surface spread {:.3g} mm, flow speed at the end {:.3g} m/s, {} steps, "
+               "{} cycles, {} flow steps, {:.2f} s\n",
+               ds->cell, ds->time_step, ds->coupling_interval, 1e3 * r.rise_measured, 1e3 * r.rise_expected,
+               r.relative_error, r.volume_error, 1e3 * r.surface_spread, r.max_speed_end, r.steps, r.cycles,
+               r.flow_steps, r.seconds);
   });
 }
 

@@ -21,6 +21,7 @@
 #include "base/staged_output.h"
 #include "model/output.h"
 #include "model/parallel.h"
+#include "model/state_bytes.h"
 #include "model/scene.h"
 #include "model/stop_rule.h"
 #include "model/world.h"
@@ -30,61 +31,7 @@ namespace pastemix::model {
 namespace {
 
 // Bumped whenever a stored member is added, removed or reordered.
-constexpr char kMagic[] = "pastemix-checkpoint-v2";
-
-class Bytes {
- public:
-  template <class T>
-  void put(const T& v) {
-    static_assert(std::is_trivially_copyable_v<T>);
-    const auto* b = reinterpret_cast<const char*>(&v);
-    buf_.insert(buf_.end(), b, b + sizeof(T));
-  }
-  template <class T>
-  void put(const std::vector<T>& v) {
-    static_assert(std::is_trivially_copyable_v<T>);
-    put(static_cast<std::uint64_t>(v.size()));
-    const auto* b = reinterpret_cast<const char*>(v.data());
-    buf_.insert(buf_.end(), b, b + v.size() * sizeof(T));
-  }
-  void put(const std::vector<bool>&) = delete;
-  const std::vector<char>& data() const { return buf_; }
-
- private:
-  std::vector<char> buf_;
-};
-
-class Reader {
- public:
-  Reader(std::span<const std::uint8_t> data, std::string path) : data_(data), path_(std::move(path)) {}
-  template <class T>
-  void get(T& v) {
-    static_assert(std::is_trivially_copyable_v<T>);
-    take(&v, sizeof(T));
-  }
-  template <class T>
-  void get(std::vector<T>& v) {
-    std::uint64_t n = 0;
-    get(n);
-    if (n > (data_.size() - at_) / std::max<std::size_t>(sizeof(T), 1)) damaged("a length past the end");
-    v.resize(n);
-    take(v.data(), n * sizeof(T));
-  }
-  bool done() const { return at_ == data_.size(); }
-  [[noreturn]] void damaged(const std::string& why) const {
-    throw InputError(path_, 0, "/checkpoint/state", fmt::format("damaged checkpoint ({}): start the run again", why));
-  }
-
- private:
-  void take(void* out, std::size_t n) {
-    if (n > data_.size() - at_) damaged("truncated");
-    std::memcpy(out, data_.data() + at_, n);
-    at_ += n;
-  }
-  std::span<const std::uint8_t> data_;
-  std::string path_;
-  std::size_t at_ = 0;
-};
+constexpr char kMagic[] = "pastemix-checkpoint-v3";
 
 // The members in one fixed order, for both directions: io(x) is put(x) or get(x).
 template <class IO>
@@ -113,6 +60,20 @@ struct CheckpointAccess {
     io(wet);
     if (wet != (field != nullptr)) throw std::logic_error("checkpoint: fluid state and scene disagree");
     if (wet) fluid_state(io, *field);
+    // The moving paste (dynamics = "flow"): its state as the coupling's own bytes (fluid/flow_coupling.h), after
+    // the particles, which its restore() reads.
+    auto& flow = std::get<FlowForces>(w.forces_).coupling;
+    bool flowing = flow != nullptr;
+    io(flowing);
+    if (flowing != (flow != nullptr)) throw std::logic_error("checkpoint: flow state and scene disagree");
+    if (!flowing) return;
+    if constexpr (std::is_const_v<W>) {
+      io(flow->save());
+    } else {
+      std::vector<char> bytes;
+      io(bytes);
+      flow->restore(bytes, w.p_);
+    }
   }
   template <class IO, class F>
   static void fluid_state(IO& io, F& f) {
@@ -131,7 +92,7 @@ struct CheckpointAccess {
   template <class IO, class O>
   static void output_state(IO& io, O& o) {
     io(o.snap_times_), io(o.snap_counts_), io(o.t_), io(o.ke_), io(o.rot_), io(o.pot_), io(o.el_), io(o.npair_);
-    io(o.nwall_), io(o.surface_);
+    io(o.nwall_), io(o.surface_), io(o.paste_volume_);
   }
   // The pair list's thread partition is not stored: it is made again from the positions of the last
   // rebuild, for this run's thread count (the engine's bits do not depend on the partition).
@@ -156,7 +117,7 @@ std::string sizes_tag() {
 }
 
 std::vector<char> save_state(const World& world, const RestMonitor& rest, const RunOutput& out) {
-  Bytes b;
+  StateBytes b;
   auto io = [&](const auto& v) { b.put(v); };
   const std::string tag = sizes_tag();
   b.put(std::vector<char>(tag.begin(), tag.end()));
@@ -216,7 +177,7 @@ CheckpointInfo resume_from_checkpoint(const std::filesystem::path& path, const S
                                    hash, here));
     state = r.read_bytes("/checkpoint/state");
   }
-  Reader rd(state, path.string());
+  StateReader rd(state, path.string());
   std::vector<char> tag;
   rd.get(tag);
   if (std::string(tag.begin(), tag.end()) != sizes_tag())

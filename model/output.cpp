@@ -8,6 +8,7 @@
 
 #include "base/h5.h"
 #include "base/hash.h"
+#include "model/fluid/flow_coupling.h"
 #include "model/scene.h"
 
 namespace pastemix::model {
@@ -60,7 +61,37 @@ RunOutput::RunOutput(const std::filesystem::path& h5_path, std::string h5_final_
     h5_->attribute("/", "fluid_density", f.density());
     h5_->attribute("/", "fluid_solids_fraction", f.solids_fraction);
     h5_->attribute("/", "fluid_region_count", static_cast<std::int64_t>(scene.fluid.size()));
+    if (f.flow) {
+      h5_->create_group("/flow");
+      h5_->attribute("/flow", "dynamics", "flow");
+      h5_->attribute("/flow", "cell_m", f.flow_cell);
+      h5_->attribute("/flow", "top_m", f.flow_top);
+      h5_->attribute("/flow", "kernel_width", f.kernel_width);
+      h5_->attribute("/flow", "coupling_interval", static_cast<std::int64_t>(f.coupling_interval));
+      h5_->attribute("/flow", "regularisation_s", f.regularisation);
+    }
   }
+}
+
+// The flow's cell fields at this snapshot (model/output.h), under the snapshot's own number.
+void RunOutput::flow_snapshot(const fluid::FlowCoupling& c, std::size_t k) {
+  const fluid::FlowFields f = c.fields();
+  if (k == 0) {
+    const char* axis[] = {"x", "y", "z"};
+    for (int d = 0; d < 3; ++d) {
+      h5_->attribute("/flow", fmt::format("n{}", axis[d]), static_cast<std::int64_t>(f.n[d]));
+      h5_->attribute("/flow", fmt::format("h{}", axis[d]), f.h[d]);
+      h5_->attribute("/flow", fmt::format("origin_{}", axis[d]), f.origin[d]);
+    }
+  }
+  const std::string g = fmt::format("/flow/snapshots/{:06d}", k);
+  const std::vector<std::uint64_t> dims{static_cast<std::uint64_t>(f.n[2]), static_cast<std::uint64_t>(f.n[1]),
+                                        static_cast<std::uint64_t>(f.n[0])};
+  h5_->write(g + "/paste_fraction", f.paste_fraction, dims);
+  h5_->write(g + "/fluid_fraction", f.fluid_fraction, dims);
+  h5_->write(g + "/pressure", f.pressure, dims);
+  h5_->write(g + "/velocity", f.velocity, {dims[0], dims[1], dims[2], 3});
+  h5_->attribute(g, "time_s", c.solver_time());
 }
 
 RunOutput::~RunOutput() = default;
@@ -119,6 +150,7 @@ void RunOutput::snapshot(const World& w) {
   h5_->write(g + "/material", mat, {n});
   if (rotation_) h5_->write(g + "/angular_velocity", flat(in_id_order(p.omega)), {n, 3});
   h5_->attribute(g, "time_s", w.time());
+  if (const auto* c = w.flow()) flow_snapshot(*c, snap_times_.size());
   snap_times_.push_back(w.time());
   snap_counts_.push_back(p.size());
 }
@@ -133,6 +165,7 @@ void RunOutput::sample(const World& w) {
   npair_.push_back(e.pair_contacts);
   nwall_.push_back(e.wall_contacts);
   if (const auto* f = w.fluid()) surface_.insert(surface_.end(), f->surfaces().begin(), f->surfaces().end());
+  if (const auto* c = w.flow()) paste_volume_.push_back(c->paste_volume());
 }
 
 void RunOutput::stop_outcome(const StopOutcome& o, const StopRule& rule) {
@@ -162,6 +195,11 @@ std::string RunOutput::finish(const World& w, double wall_seconds, int threads) 
     const std::uint64_t r = f->regions().size();
     h5_->write("/timeseries/fluid_surface_z", surface_, {t_.size(), r});
     h5_->attribute("/", "fluid_surface_z", f->surface_z(0));
+  }
+  if (const auto* c = w.flow()) {
+    h5_->write("/flow/timeseries/paste_volume", paste_volume_);
+    h5_->attribute("/flow", "cycles", static_cast<std::int64_t>(c->cycles()));
+    h5_->attribute("/flow", "flow_steps", static_cast<std::int64_t>(c->flow_steps()));
   }
   const Profile& prof = w.profile();
   std::vector<std::string> names(Profile::names.begin(), Profile::names.end());

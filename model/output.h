@@ -10,6 +10,14 @@
 //   fluid (only with [[fluid]]): root attributes fluid_surface_z (m, final surface of the first region),
 //                             fluid_density (kg/m3), fluid_solids_fraction (-) of the first region,
 //                             fluid_region_count; /timeseries/fluid_surface_z (samples x regions, m)
+//   flow (only with [[fluid]] dynamics = "flow", model/fluid/flow_coupling.h): /flow attributes dynamics,
+//                             cell_m, top_m, kernel_width, coupling_interval, regularisation_s, nx, ny, nz
+//                             (cells), hx, hy, hz, origin_x, origin_y, origin_z (m), cycles, flow_steps;
+//                             /flow/snapshots/NNNNNN/ (attribute time_s: the flow's own time, the last
+//                             coupling cycle's end) with the particle snapshot of the same number, arrays
+//                             [k][j][i] (z slowest): paste_fraction, fluid_fraction (-), pressure (Pa),
+//                             velocity (nz x ny x nx x 3, m/s, face means); /flow/timeseries/paste_volume (m3,
+//                             per energy sample)
 //   /snapshots/time           (S) s
 //   /snapshots/NNNNNN/        one group per snapshot (attribute time_s):
 //       position (N x 3, m), velocity (N x 3, m/s), radius (N, m), id (N, int64), material (N, int32),
@@ -66,6 +74,7 @@ class RunOutput {
  private:
   friend struct CheckpointAccess;  // model/checkpoint.cpp: the result so far travels in the checkpoint
   void write_escaped(const World& w);
+  void flow_snapshot(const fluid::FlowCoupling& c, std::size_t k);
   std::unique_ptr<H5Writer> h5_;
   std::string h5_name_;
   bool rotation_ = false;
@@ -74,6 +83,7 @@ class RunOutput {
   std::vector<double> t_, ke_, rot_, pot_, el_;
   std::vector<std::int64_t> npair_, nwall_;
   std::vector<double> surface_;  // m, fluid surface per sample and region (row-major)
+  std::vector<double> paste_volume_;  // m3, the flow's paste volume per sample (dynamics = "flow")
 };
 
 std::string scene_hash(const std::string& text);

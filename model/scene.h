@@ -86,7 +86,8 @@ struct Plan {
   bool rotation = true;       // angular arrays allocated and integrated
   bool tangential = true;     // some pair has friction -> tangential history
   int history_width = 0;      // doubles per contact
-  bool fluid = false;         // some [[fluid]] region (model/fluid/fluid_scene.h); absent -> no fluid arrays or pass
+  bool fluid = false;         // some [[fluid]] region at rest (model/fluid/fluid_scene.h); absent -> no fluid arrays or pass
+  bool flow = false;          // a dynamics = "flow" region (model/fluid/flow_coupling.h); absent -> no flow pass
 };
 
 struct Scene {

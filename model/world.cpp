@@ -366,7 +366,7 @@ void World::run_lane(const std::vector<typename Law::Params>& laws,
   long bad_all = std::numeric_limits<long>::max();
   for (;;) {
     const StepContext ctx{t, cfg_.dt, n_materials};
-    const PassStep<Law, Roll> s{laws, rolling, ctx, walls_, wall_contacts_, p_, pairs_, lane.me};
+    const PassStep<Law, Roll> s{laws, rolling, ctx, walls_, wall_contacts_, p_, pairs_, lane.me, lane.cur};
     const Then then = batch.initial ? Then::nothing : (done + 1 < batch.n ? Then::kick_drift : Then::kick);
     lane.d2 = 0.0, lane.bad = std::numeric_limits<long>::max();
     step_lane(s, lane, then, batch.h);
@@ -421,6 +421,12 @@ long World::passes(long n, double h, bool initial, double& moved2) {
   timed_hooks([](auto& pass) {
     if constexpr (requires { pass.end_batch(); })
       if (pass.active()) pass.end_batch();
+  });
+  // A pass's failure inside the region (it cannot leave it: forces/flow_forces.h) stops the run here, after
+  // the batch's hooks (the fluid field's state is then whole).
+  for_each_pass(forces_, [](const auto& pass) {
+    if constexpr (requires { pass.rethrow(); })
+      if (pass.active()) pass.rethrow();
   });
   pairs_.parity = batch.parity_end;
   pairs_.sync_cross();
@@ -533,9 +539,11 @@ void World::remove_escaped(double& moved2) {
   const std::vector<std::uint32_t> map = p_.remove_if(gone);
   pairs_.rename(map, p_.size());
   wall_contacts_.rename(map, p_.size());
-  for_each_pass(forces_, [](auto& pass) {
+  for_each_pass(forces_, [&](auto& pass) {
     if constexpr (requires { pass.particles_removed(); })
       if (pass.active()) pass.particles_removed();
+    if constexpr (requires { pass.particles_removed(map, p_.size()); })
+      if (pass.active()) pass.particles_removed(map, p_.size());
   });
   rebuild_neighbors();
   moved2 = 0.0;

@@ -100,6 +100,9 @@ class World {
     if (f) f->set_candidate_margin(cfg_.skin), f->set_step(cfg_.dt, cfg_.gravity);
   }
   const fluid::FluidField* fluid() const { return std::get<FluidForces>(forces_).field.get(); }
+  // --- the moving paste's pass (forces/flow_forces.h): null without a dynamics = "flow" region. ---
+  void set_flow(std::shared_ptr<fluid::FlowCoupling> coupling) { std::get<FlowForces>(forces_).coupling = std::move(coupling); }
+  const fluid::FlowCoupling* flow() const { return std::get<FlowForces>(forces_).coupling.get(); }
   const Profile& profile() const { return profile_; }
   // Particles removed at the domain boundary (on_exit = remove), in the order of removal, and their mass.
   const std::vector<Escape>& escaped() const { return escaped_; }

@@ -13,8 +13,9 @@
 //   mixed     each rock counts as mixed by the paste share of the fluid around it: the volume-weighted mean
 //             of alpha over the cells its sphere overlaps, sum_c alpha_c V(sphere n c) / V(sphere); no
 //             threshold, so a rock half in the paste is half mixed
-// Read from the result file's /flow group (schema: model/flow/flow_output.h): the grid attributes and the
-// snapshot whose time is nearest the particles' snapshot (it must be within half a flow output interval, or
+// Read from the result file's /flow group (model/output.h; the flow solver's own files, model/flow/flow_output.h,
+// have the same layout with the times in /flow/snapshots/time instead of each group's time_s): the grid
+// attributes nx.. origin_z and the snapshot whose time is nearest the particles' snapshot (it must be within half a flow output interval, or
 // 1e-9 s when the file has one snapshot).
 #pragma once
 
@@ -45,12 +46,12 @@ struct PasteField {
   Box3 cell_box(int i, int j, int k) const;
 };
 
-// True when the file has a /flow group with snapshots.
+// True when the file has a /flow group with at least one snapshot group.
 bool has_paste_field(const H5Reader& h5);
 
 // Reads the field nearest `time_s` (see above). Any defect (a missing attribute, dims that are not the grid's,
-// alpha outside [-1e-9, 1 + 1e-9] or not finite, no snapshot near time_s) is an InputError naming `file` and
-// the dataset or attribute. Values within 1e-9 of [0, 1] are clamped (the flow's round-off).
+// alpha outside [-1e-4, 1 + 1e-4] or not finite, no snapshot near time_s) is an InputError naming `file` and
+// the dataset or attribute. Values within 1e-4 of [0, 1] are clamped (the flow's advection overshoots by ~5e-6).
 PasteField read_paste_field(const H5Reader& h5, const std::string& file, double time_s);
 
 // The area-mean paste height (m) over the rectangle [x0, x1] x [y0, y1]: each column's height function

@@ -85,7 +85,11 @@ CoupledFlow::Start CoupledFlow::drag_at_start(const CoupledParticles& p) const {
   s0.u = exchange_.fluid_velocity({p.x, p.d, p.m, none, none}, flow_.velocity(), mass0, &mask0, s0.share);
   const std::vector<double>& eps_now = flow_.fluid_fraction();
   for (std::size_t i = 0; i < n; ++i) {
-    if (s0.share[i] == 0.0) continue;
+    // A share below 0 is the round-off of a folded kernel's weights (~1e-18) on faces the mask leaves: none.
+    if (!(s0.share[i] > 0.0)) {
+      s0.share[i] = 0.0;
+      continue;
+    }
     const Stencil s = stencil(g, p.x[i], p.d[i], s_.width_factor);
     const double seen = eps_now.empty() ? 1.0 : interpolate(g, s, eps_now);
     const double eps = std::min(1.0, seen + own_solid_fraction(g, s, p.d[i]));
@@ -97,22 +101,14 @@ CoupledFlow::Start CoupledFlow::drag_at_start(const CoupledParticles& p) const {
   return s0;
 }
 
-// One DEM step of particle i: the other forces, the velocity-dependent drag implicit against the frozen u_p
-// (backward Euler, v' = (v + a dt + (beta dt / m) u_p) / (1 + beta dt / m): stable at any beta dt / m, and it
-// lands on the terminal slip), the yield stick, the drift. The drag impulses are summed into sub (J_sub).
-void CoupledFlow::dem_step(CoupledParticles& p, std::size_t i, double dt, int steps, const ExtraForce& extra,
-                           const Start& s0, std::vector<Vec>& sub, CycleStats& st) const {
-  const flow::Grid& g = flow_.grid();
+bool CoupledFlow::drag_step(const CoupledParticles& p, std::size_t i, Vec& v, const Vec& F, double dt, const Start& s0,
+                            Vec& J) const {
   const Vec& u = s0.u[i];
-  Vec F{};
-  const Vec fx = extra ? extra(i, p) : Vec{};
-  for (int c = 0; c < 3; ++c) F[c] = p.m[i] * s_.gravity[c] + pending_[i][c] / (steps * dt) + fx[c];
-  Vec& v = p.v[i];
   const double a = s0.beta[i] * dt / p.m[i];
   for (int c = 0; c < 3; ++c) {
     const double free = v[c] + F[c] / p.m[i] * dt;
     const double next = (free + a * u[c]) / (1.0 + a);
-    sub[i][c] += p.m[i] * (next - free);
+    J[c] += p.m[i] * (next - free);
     v[c] = next;
   }
   // The yield part in the same update (as fluid/drag_kick.h): it removes at most F_y dt / (1 + a) of momentum
@@ -121,16 +117,28 @@ void CoupledFlow::dem_step(CoupledParticles& p, std::size_t i, double dt, int st
   const double bound = s0.share[i] * p.drag[i].rest * dt / (1.0 + a);  // N s
   const Vec w{v[0] - u[0], v[1] - u[1], v[2] - u[2]};
   const double speed = std::hypot(w[0], w[1], w[2]);
-  if (bound > 0.0 && speed > 0.0) {
-    const bool stick = p.m[i] * speed <= bound;
-    const double scale = stick ? p.m[i] : bound / speed;
-    st.stuck_steps += stick ? 1 : 0;
-    for (int c = 0; c < 3; ++c) {
-      const double J = -scale * w[c];
-      sub[i][c] += J;
-      v[c] += J / p.m[i];
-    }
+  if (!(bound > 0.0 && speed > 0.0)) return false;
+  const bool stick = p.m[i] * speed <= bound;
+  const double scale = stick ? p.m[i] : bound / speed;
+  for (int c = 0; c < 3; ++c) {
+    const double Jc = -scale * w[c];
+    J[c] += Jc;
+    v[c] += Jc / p.m[i];
   }
+  return stick;
+}
+
+// One DEM step of particle i: the other forces, the velocity-dependent drag implicit against the frozen u_p
+// (backward Euler, v' = (v + a dt + (beta dt / m) u_p) / (1 + beta dt / m): stable at any beta dt / m, and it
+// lands on the terminal slip), the yield stick, the drift. The drag impulses are summed into sub (J_sub).
+void CoupledFlow::dem_step(CoupledParticles& p, std::size_t i, double dt, int steps, const ExtraForce& extra,
+                           const Start& s0, std::vector<Vec>& sub, CycleStats& st) const {
+  const flow::Grid& g = flow_.grid();
+  Vec F{};
+  const Vec fx = extra ? extra(i, p) : Vec{};
+  for (int c = 0; c < 3; ++c) F[c] = p.m[i] * s_.gravity[c] + pending_[i][c] / (steps * dt) + fx[c];
+  Vec& v = p.v[i];
+  st.stuck_steps += drag_step(p, i, v, F, dt, s0, sub[i]) ? 1 : 0;
   for (int c = 0; c < 3; ++c) {
     double& x = p.x[i][c];
     x += v[c] * dt;
@@ -150,15 +158,29 @@ void CoupledFlow::flow_interval(CoupledParticles& p, double T, const Start& s0, 
   const std::vector<double> eps_start = flow_.fluid_fraction().empty() ? std::vector<double>(g.cell_count(), 1.0)
                                                                        : flow_.fluid_fraction();
   const std::vector<double> eps_end = fluid_fraction(p);
-  const int parts = std::max(1, static_cast<int>(std::ceil(T / flow_.next_time_step() * (1.0 - 1e-12))));
+  // Equal sub-steps from the flow's CFL bound at the start; if the exchange has sped the fluid up so that the
+  // next sub-step would break the bound, the rest of the interval is split again from there (f0: the fraction
+  // done at that split). Without a split the sub-steps are T / parts, r = j / parts, as they always were.
+  auto split = [&](double left) {
+    return std::max(1, static_cast<int>(std::ceil(left / flow_.next_time_step() * (1.0 - 1e-12))));
+  };
+  int parts = split(T);
+  double f0 = 0.0;
+  int j0 = 0;  // the sub-step index at the last split
   const ExchangeParticles view{p.x, p.d, p.m, s0.beta, none};
   std::vector<Vec> impulse, reference = s0.u;
   flow::Faces at_start, at_end;  // N s/m3: the pressure impulses, split by the positions their fluid mass had
   for (int c = 0; c < 3; ++c) at_start[c].assign(g.face_count(c), 0.0), at_end[c].assign(g.face_count(c), 0.0);
-  for (int j = 0; j < parts; ++j) {
-    const double r0 = static_cast<double>(j) / parts, r1 = static_cast<double>(j + 1) / parts;
+  for (int j = 0; j < j0 + parts; ++j) {
+    if (j > 0 && (1.0 - f0) * T / parts > flow_.next_time_step()) {
+      f0 = f0 + (1.0 - f0) * (j - j0) / parts;
+      j0 = j;
+      parts = split((1.0 - f0) * T);
+    }
+    const double r0 = f0 + (1.0 - f0) * (j - j0) / parts, r1 = f0 + (1.0 - f0) * (j - j0 + 1) / parts;
     std::vector<double> eps(eps_end);
-    if (j + 1 < parts)
+    const bool last = j + 1 == j0 + parts;
+    if (!last)
       for (std::size_t c = 0; c < eps.size(); ++c) eps[c] = eps_start[c] + r1 * (eps_end[c] - eps_start[c]);
     flow_.set_next_fluid_fraction(std::move(eps));
     // The books of the exchange: the faces' momentum change inside the hooks against the particles' impulses.
@@ -181,11 +203,11 @@ void CoupledFlow::flow_interval(CoupledParticles& p, double T, const Start& s0, 
       book(before, u, mass, impulse);
       // The next sub-step's change is measured from where this one left the fluid at the particles.
       std::vector<double> unused;
-      if (j + 1 < parts) reference = exchange_.fluid_velocity(view, u, mass, &mask, unused);
+      if (!last) reference = exchange_.fluid_velocity(view, u, mass, &mask, unused);
     };
     flow_.set_exchange(react, correct);
     try {
-      flow_.step(T / parts);
+      flow_.step((1.0 - f0) * T / parts);
     } catch (...) {
       flow_.set_exchange({});
       throw;

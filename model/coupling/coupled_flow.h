@@ -75,17 +75,37 @@ class CoupledFlow {
   void start(const CoupledParticles& p);
   CycleStats cycle(CoupledParticles& p, int steps, double dt, const ExtraForce& extra = {});
 
+  // cycle()'s three parts, for a DEM that runs its own steps (the engine's flow pass, model/fluid/flow_coupling.h):
+  // begin() is step 1, drag_step() one particle's drag in step 2, finish() steps 3-4. Per particle at the
+  // cycle's start: u_p (m/s), the paste share, beta (kg/s).
+  using Vec = std::array<double, 3>;
+  struct Start {
+    std::vector<Vec> u;
+    std::vector<double> share, beta;
+  };
+  Start begin(const CoupledParticles& p) const { return drag_at_start(p); }
+  // Particle i's velocity v (in/out) after a step dt under the force F (N: every force but the paste's drag,
+  // the pending pressure impulse's share included), with the drag against the frozen fluid; J (in/out): its
+  // summed drag impulse (N s). Returns whether the yield part held it.
+  bool drag_step(const CoupledParticles& p, std::size_t i, Vec& v, const Vec& F, double dt, const Start& s0,
+                 Vec& J) const;
+  void finish(CoupledParticles& p, double T, const Start& s0, const std::vector<Vec>& sub, CycleStats& st) {
+    flow_interval(p, T, s0, sub, st);
+  }
+  // What the coupling keeps between cycles (the engine's checkpoint and renumbering): the positions of the last
+  // flow step and the pending pressure impulses, per particle.
+  struct State {
+    std::vector<Vec> x_flow, pending;
+  };
+  State state() const { return {x_flow_, pending_}; }
+  void restore(State s) { x_flow_ = std::move(s.x_flow), pending_ = std::move(s.pending); }
+
   const std::vector<std::array<double, 3>>& pending_impulse() const { return pending_; }  // N s per particle
   // N s: sum over faces of eps_f rho_f V u (the fluid's momentum, the masses the flow step ends with).
   std::array<double, 3> fluid_momentum() const;
   const flow::FlowSolver& flow() const { return flow_; }
 
  private:
-  using Vec = std::array<double, 3>;
-  struct Start {  // per particle, at the cycle's start: u_p (m/s), paste share, beta (kg/s)
-    std::vector<Vec> u;
-    std::vector<double> share, beta;
-  };
   Start drag_at_start(const CoupledParticles& p) const;
   void dem_step(CoupledParticles& p, std::size_t i, double dt, int steps, const ExtraForce& extra, const Start& s0,
                 std::vector<Vec>& sub, CycleStats& st) const;

@@ -29,9 +29,10 @@ std::vector<std::array<double, 3>> block(double drop) {
   return x;
 }
 
-// The surface height H solving A H = V_paste + int_{z < H} eps_s dV (bisection; the right side grows slower
-// than the left, eps_s < 1).
-double level(const flow::Grid& g, const std::vector<double>& eps_s, double paste_volume) {
+}  // namespace
+
+// The right side grows slower than the left (eps_s < 1): one root.
+double piston_level(const flow::Grid& g, const std::vector<double>& eps_s, double paste_volume, double height) {
   const double area = g.n[0] * g.h[0] * g.n[1] * g.h[1];
   auto excess = [&](double H) {
     double solid = 0.0;
@@ -43,12 +44,32 @@ double level(const flow::Grid& g, const std::vector<double>& eps_s, double paste
     }
     return area * H - paste_volume - solid;
   };
-  double lo = 0.0, hi = kHeight;
+  double lo = 0.0, hi = height;
   for (int it = 0; it < 200 && hi - lo > 1e-14; ++it) (excess(0.5 * (lo + hi)) > 0.0 ? hi : lo) = 0.5 * (lo + hi);
   return 0.5 * (lo + hi);
 }
 
-}  // namespace
+FreeColumns free_columns(const flow::Grid& g, const std::vector<double>& eps_s, const std::vector<double>& eps_f,
+                         const std::vector<double>& alpha) {
+  double sum = 0.0, lo = 1e9, hi = -1e9;
+  FreeColumns out;
+  for (int j = 0; j < g.n[1]; ++j)
+    for (int i = 0; i < g.n[0]; ++i) {
+      double column = 0.0, solid = 0.0;
+      for (int k = 0; k < g.n[2]; ++k) {
+        column += eps_f[g.cell(i, j, k)] * alpha[g.cell(i, j, k)] * g.h[2];
+        solid += eps_s[g.cell(i, j, k)];
+      }
+      if (solid != 0.0) continue;
+      sum += column;
+      lo = std::min(lo, column);
+      hi = std::max(hi, column);
+      ++out.count;
+    }
+  out.mean = sum / out.count;
+  out.spread = hi - lo;
+  return out;
+}
 
 PistonResult run_piston(const PistonSettings& s) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -91,28 +112,11 @@ PistonResult run_piston(const PistonSettings& s) {
     ++r.steps;
   }
   const std::vector<double> eps_s = solid_at(end);
-  r.rise_expected = level(g, eps_s, v0) - kDepth;
-  // The free columns: no solid anywhere in them.
-  double sum = 0.0, lo = 1e9, hi = -1e9;
-  int count = 0;
-  const std::vector<double>& alpha = solver.alpha();
-  const std::vector<double>& eps = solver.fluid_fraction();
-  for (int j = 0; j < g.n[1]; ++j)
-    for (int i = 0; i < g.n[0]; ++i) {
-      double column = 0.0, solid = 0.0;
-      for (int k = 0; k < g.n[2]; ++k) {
-        column += eps[g.cell(i, j, k)] * alpha[g.cell(i, j, k)] * g.h[2];
-        solid += eps_s[g.cell(i, j, k)];
-      }
-      if (solid != 0.0) continue;
-      sum += column;
-      lo = std::min(lo, column);
-      hi = std::max(hi, column);
-      ++count;
-    }
-  r.rise_measured = sum / count - kDepth;
+  r.rise_expected = piston_level(g, eps_s, v0, kHeight) - kDepth;
+  const FreeColumns free = free_columns(g, eps_s, solver.fluid_fraction(), solver.alpha());
+  r.rise_measured = free.mean - kDepth;
   r.relative_error = std::abs(r.rise_measured - r.rise_expected) / r.rise_expected;
-  r.surface_spread = hi - lo;
+  r.surface_spread = free.spread;
   r.volume_error = std::abs(solver.paste_volume() - v0) / v0;
   r.max_speed_end = solver.max_speed();
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

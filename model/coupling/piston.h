@@ -12,6 +12,10 @@
 // nothing: the block's cells overfill instead and the surface stays put.
 #pragma once
 
+#include <vector>
+
+#include "model/flow/grid.h"
+
 namespace pastemix::coupling {
 
 struct PistonSettings {
@@ -38,5 +42,18 @@ struct PistonResult {
 };
 
 PistonResult run_piston(const PistonSettings& s);
+
+// The two sides of the test, for the same case run with DEM spheres through the engine
+// (model/fluid/flow_piston.h). The level H of a box of paste volume `paste_volume` (m3) holding the solid
+// eps_s (per cell): A H = V_paste + int_{z < H} eps_s dV, by bisection up to `height` (m).
+double piston_level(const flow::Grid& g, const std::vector<double>& eps_s, double paste_volume, double height);
+// The measured surface: the paste column height sum_k eps_f alpha h_z over the columns with no solid, their
+// mean and their spread (max - min), m.
+struct FreeColumns {
+  double mean = 0.0, spread = 0.0;
+  int count = 0;
+};
+FreeColumns free_columns(const flow::Grid& g, const std::vector<double>& eps_s, const std::vector<double>& eps_f,
+                         const std::vector<double>& alpha);
 
 }  // namespace pastemix::coupling

@@ -348,6 +348,23 @@ long FlowSolver::advance_to(double t) {
   return n;
 }
 
+FlowSolver::State FlowSolver::state() const {
+  return {u_, continuity_impulse_, pressure_impulse_, p_, alpha_, mu_, eps_, eps_next_, with_rate_, pressure_ready_,
+          t_, last_, totals_};
+}
+
+void FlowSolver::restore(State s) {
+  const std::size_t cells = g_.cell_count();
+  bool fits = s.p.size() == cells && s.alpha.size() == cells && s.mu.size() == cells &&
+              (s.eps.empty() || s.eps.size() == cells) && (s.eps_next.empty() || s.eps_next.size() == cells);
+  for (int c = 0; c < 3; ++c) fits = fits && static_cast<long>(s.u[c].size()) == g_.face_count(c);
+  if (!fits) throw std::invalid_argument("flow: a saved state of another grid");
+  u_ = std::move(s.u), continuity_impulse_ = std::move(s.continuity_impulse), pressure_impulse_ = std::move(s.pressure_impulse);
+  p_ = std::move(s.p), alpha_ = std::move(s.alpha), mu_ = std::move(s.mu), eps_ = std::move(s.eps);
+  eps_next_ = std::move(s.eps_next);
+  with_rate_ = s.with_rate, pressure_ready_ = s.pressure_ready, t_ = s.t, last_ = s.last, totals_ = s.totals;
+}
+
 double FlowSolver::paste_volume() const {
   double sum = 0.0, comp = 0.0;  // Kahan
   for (std::size_t i = 0; i < alpha_.size(); ++i) {

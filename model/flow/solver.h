@@ -124,6 +124,20 @@ class FlowSolver {
   const StepStats& last() const { return last_; }
   const CostTotals& totals() const { return totals_; }
 
+  // The dynamic state, everything a step reads that the constructor does not make (the engine's checkpoint,
+  // model/checkpoint.cpp): restored, the next step gives the same bits as in the run that saved it. The
+  // operators' matrices are rebuilt by every step from these; the hooks and blocked faces are the caller's.
+  struct State {
+    Faces u, continuity_impulse, pressure_impulse;
+    std::vector<double> p, alpha, mu, eps, eps_next;
+    bool with_rate = true, pressure_ready = false;
+    double t = 0.0;
+    StepStats last;
+    CostTotals totals;
+  };
+  State state() const;
+  void restore(State s);  // std::invalid_argument if its sizes do not fit the grid
+
  private:
   void update_viscosity(const std::vector<double>& gamma);
   // With particles: projects u for the step's continuity div(eps_f u) = -d eps_f/dt before the transport.

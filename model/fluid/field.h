@@ -71,6 +71,15 @@ struct FluidRegion {
   // Collective yield resistance of touching spheres (collective.h): off unless the scene asks for it.
   bool collective = false;
   double collective_interval = 5e-4;  // s of simulated time between two cluster updates
+  // dynamics = "flow" (fluid_scene.h): the paste solved by the flow solver, coupled both ways with the
+  // particles (fluid/flow_coupling.h); the keys below are read only then. The FluidField never sees such a
+  // region.
+  bool flow = false;
+  double flow_cell = 0.0;         // m, cubic cells tiling the region from bottom to flow_top
+  double flow_top = 0.0;          // m, top of the flow box (air above the surface; an open side)
+  double kernel_width = 2.0;      // -, c of the particles' kernels (model/coupling/kernel.h)
+  long coupling_interval = 1;     // DEM steps per coupling cycle (one flow interval)
+  double regularisation = 0.0;    // s, Papanastasiou's m of a yield-stress paste in the flow (model/flow/bingham.h)
 
   double area() const { return (x_max - x_min) * (y_max - y_min); }
   double density() const { return std::visit([](const auto& p) { return p.density; }, law); }  // kg/m3

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "model/fluid/fluid_scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -108,14 +109,12 @@ void read_drag_law(const Params& f, const std::string& scene_path, FluidRegion& 
   });
 }
 
-// [[fluid]] dynamics (fluid_scene.h): "at_rest" (the default, nothing more is read) or "flow", whose grid and
-// kernel are checked against the region and the domain. "flow" is not yet coupled into the engine (issue 18:
-// the momentum exchange comes first), so a valid "flow" region stops the scene here, saying so: it never runs
-// at rest in its place.
-void read_dynamics(const Params& f, const FluidRegion& r, const Vec3& domain_max) {
+// [[fluid]] dynamics (fluid_scene.h): "at_rest" (the default, nothing more is read) or "flow", whose grid,
+// kernel, coupling interval and regularisation are checked against the region and the domain and kept in r.
+void read_dynamics(const Params& f, FluidRegion& r, const Vec3& domain_max) {
   const bool flow = f.choice_or("dynamics", {"at_rest", "flow"}, "at_rest") == "flow";
   if (!flow) {
-    for (const char* key : {"cell", "top", "kernel_width"})
+    for (const char* key : {"cell", "top", "kernel_width", "coupling_interval", "regularisation"})
       if (f.has(key)) f.fail(key, fmt::format("{} is a key of dynamics = \"flow\" (this region is at rest)", key));
     return;
   }
@@ -146,8 +145,22 @@ void read_dynamics(const Params& f, const FluidRegion& r, const Vec3& domain_max
     f.fail("kernel_width", fmt::format("kernel_width = {:g} is below its minimum {} (model/coupling/kernel.h: a "
                                        "narrower kernel puts a single sphere's solid fraction above 1)",
                                        c, coupling::kMinWidthFactor));
-  f.fail("dynamics", "dynamics = \"flow\" is read and checked, but not yet coupled into the engine (issue 18: the "
-                     "momentum exchange comes first); use \"at_rest\"");
+  if (r.collective)
+    f.fail("collective", "the bearing-capacity rule is for dynamics = \"at_rest\" only: with \"flow\" the paste's "
+                         "own stress carries a pile");
+  const long interval = f.integer_or("coupling_interval", 1);
+  if (interval < 1) f.fail("coupling_interval", fmt::format("coupling_interval = {} must be >= 1 (DEM steps per flow interval)", interval));
+  // A yield-stress paste in the flow solver is regularised (model/flow/bingham.h); m is part of every result,
+  // so it is never defaulted.
+  if (r.yield_stress() > 0.0) {
+    if (!f.has("regularisation"))
+      f.fail("dynamics", "a yield-stress paste with dynamics = \"flow\" needs regularisation = m (s, Papanastasiou's "
+                         "parameter, model/flow/bingham.h)");
+    r.regularisation = f.number("regularisation", Range::positive);
+  } else if (f.has("regularisation")) {
+    f.fail("regularisation", "regularisation is for a paste with a yield stress (this one has none)");
+  }
+  r.flow = true, r.flow_cell = cell, r.flow_top = top, r.kernel_width = c, r.coupling_interval = interval;
 }
 
 }  // namespace
@@ -237,6 +250,11 @@ std::vector<FluidRegion> read_fluid_regions(const Params& root, const std::strin
     if (r.collective && r.yield_stress() <= 0.0)
       f.fail("collective", "the bearing-capacity rule needs a yield stress (a drag law with yield_stress > 0)");
     read_dynamics(f, r, domain_max);
+    // One flow region and no other: the engine's flow pass owns the kick of every particle in its box, and
+    // a second region (at rest or flowing) would claim the same particles.
+    const bool any_flow = std::any_of(out.begin(), out.end(), [](const FluidRegion& q) { return q.flow; });
+    if (!out.empty() && (r.flow || any_flow))
+      f.fail("dynamics", "a scene with a dynamics = \"flow\" region has that one [[fluid]] region only");
     out.push_back(std::move(r));
   }
   return out;

@@ -29,13 +29,17 @@
 //   cell = 0.005                         #   m, the flow grid's cubic cells (required), tiling the region
 //   top = 0.2                            #   m, top of the flow box (air above the surface), default the domain's
 //   kernel_width = 2.0                   #   c of the particles' kernels (model/coupling/kernel.h), >= 1.2091
-//                                        # "flow" is read and checked but not yet coupled into the engine: a
-//                                        # valid "flow" region is an InputError saying so (exit 2)
+//   coupling_interval = 1                #   DEM steps per coupling cycle (fluid/flow_coupling.h), >= 1
+//   regularisation = 1000.0              #   s, Papanastasiou's m (model/flow/bingham.h), required with a
+//                                        #   yield stress (its effect is part of every result)
+//                                        # A flow region is the scene's only [[fluid]] region, without the
+//                                        # collective rule (the paste's own stress carries a pile).
 //
 // Checks: positive density and viscosities, non-negative yield stress, extents min < max, surface above the
 // bottom, a known curve with admissible coefficients (exactly one of curve / curve_from); with dynamics =
 // "flow": a grid (cell), a top inside the domain and above the surface, cells that tile the region, a kernel
-// width at or above its minimum.
+// width at or above its minimum, coupling_interval >= 1, regularisation with (only with) a yield stress, no
+// collective rule, no second region.
 #pragma once
 
 #include <optional>

@@ -18,11 +18,13 @@
 //                       (members(t): thread t's own, ascending);
 // optionally
 //   prepare(step)       once per step and thread, before the pair pass (the walls' positions at t; the fluid
-//                       field's update of the thread's own particles);
+//                       field's update of the thread's own particles; the flow coupling's cycle, on one
+//                       thread, with its barrier);
 //   begin_batch(p, pairs, threads), end_batch()  on one thread, before and after the team runs a batch of
 //                       steps (the fluid field's lanes, and the rise of its batch's last step);
-//   lists_rebuilt(), particles_removed()  after a neighbour rebuild / an outflow removal (the fluid field's
-//                       candidate list and per-particle arrays);
+//   lists_rebuilt(), particles_removed() or particles_removed(map, count)  after a neighbour rebuild / an
+//                       outflow removal (the fluid field's candidate list and per-particle arrays; the flow
+//                       coupling's, renamed through the map);
 //   partition_cost(a)   particle a's own work in the pass, in PairList::partition's units, so that the
 //                       threads' slabs balance it too (the fluid: its members' drag kicks);
 //   particles_moved(map)  after the World's spatial sort (map: old -> new dense index, a permutation): a pass
@@ -72,8 +74,9 @@ struct PassStep {
   const std::vector<Wall>& walls;
   WallContacts& wall_contacts;
   Particles& p;
-  const PairList& pairs;
+  PairList& pairs;  // the flow pass refreshes ghost copies of velocities it changed (forces/flow_forces.h)
   int thread = 0;
+  int parity = 0;   // the ghost buffer this step's pair pass reads (PairList::ghost)
 };
 
 template <class P>

@@ -4,12 +4,13 @@
 // contact laws' pass (laws/registry.h), run before these.
 #pragma once
 
+#include "model/forces/flow_forces.h"
 #include "model/forces/fluid_forces.h"
 #include "model/forces/gravity.h"
 #include "model/forces/wall_forces.h"
 
 namespace pastemix::model {
 
-using ForcePasses = PassList<Gravity, WallForces, FluidForces>;
+using ForcePasses = PassList<Gravity, WallForces, FluidForces, FlowForces>;
 
 }  // namespace pastemix::model

@@ -145,7 +145,9 @@ Scene read_scene(const Params& root, std::string text) {
   s.text = std::move(text);
   const bool rotation_switch = read_domain(root, s);
   s.fluid = fluid::read_fluid_regions(root, s.path, s.config.domain_min, s.config.domain_max);  // fluid hook
-  s.plan.fluid = !s.fluid.empty();
+  // A flow region (the only region then, fluid_scene.cpp) is the flow pass's; the at-rest field never sees it.
+  s.plan.flow = !s.fluid.empty() && s.fluid.front().flow;
+  s.plan.fluid = !s.fluid.empty() && !s.plan.flow;
   const Params contact = root.table("contact");
   s.plan.law = contact.choice("law", ContactLaws::names());
   s.plan.rolling = contact.choice_or("rolling", RollingLaws::names(), "none");
@@ -173,6 +175,7 @@ Scene load_scene(const std::filesystem::path& path) { return SceneDoc::parse_fil
 World make_world(const Scene& s) {
   World w(s.config, s.materials, s.laws, s.rolling, s.particles, s.walls, s.plan.history_width);
   if (s.plan.fluid) w.set_fluid(std::make_shared<fluid::FluidField>(s.fluid));  // fluid hook
+  if (s.plan.flow) w.set_flow(std::make_shared<fluid::FlowCoupling>(s.fluid.front(), s.config.dt, s.config.gravity));
   return w;
 }
 

@@ -42,6 +42,9 @@ struct ResultSpec {
   std::array<double, 3> flow_h{0.01, 0.01, 0.01}, flow_origin{0.0, 0.0, 0.0};
   std::vector<double> flow_alpha;
   std::int64_t flow_nz_attribute = 0;  // > 0: the nz attribute written instead of flow_n[2] (a bad file)
+  // The engine's layout (model/output.h): a group per particle snapshot with its time_s, the field under the
+  // same number (000000 at t = 0 all air, 000001 at t = 0.5 s), and no /flow/snapshots/time.
+  bool flow_engine_layout = false;
 };
 
 inline void write_flow(H5Writer& h5, const ResultSpec& s) {
@@ -53,10 +56,20 @@ inline void write_flow(H5Writer& h5, const ResultSpec& s) {
     h5.attribute("/flow", fmt::format("h{}", axis[d]), s.flow_h[d]);
     h5.attribute("/flow", fmt::format("origin_{}", axis[d]), s.flow_origin[d]);
   }
+  const std::vector<std::uint64_t> dims{std::uint64_t(s.flow_n[2]), std::uint64_t(s.flow_n[1]),
+                                        std::uint64_t(s.flow_n[0])};
+  if (s.flow_engine_layout) {
+    h5.create_group("/flow/snapshots/000000");
+    h5.write("/flow/snapshots/000000/paste_fraction", std::vector<double>(s.flow_alpha.size(), 0.0), dims);
+    h5.attribute("/flow/snapshots/000000", "time_s", 0.0);
+    h5.create_group("/flow/snapshots/000001");
+    h5.write("/flow/snapshots/000001/paste_fraction", s.flow_alpha, dims);
+    h5.attribute("/flow/snapshots/000001", "time_s", 0.5);
+    return;
+  }
   h5.write("/flow/snapshots/time", std::vector<double>{0.5});
   h5.create_group("/flow/snapshots/000000");
-  h5.write("/flow/snapshots/000000/paste_fraction", s.flow_alpha,
-           {std::uint64_t(s.flow_n[2]), std::uint64_t(s.flow_n[1]), std::uint64_t(s.flow_n[0])});
+  h5.write("/flow/snapshots/000000/paste_fraction", s.flow_alpha, dims);
 }
 
 inline void write_result(const std::filesystem::path& path, const ResultSpec& s) {

@@ -78,6 +78,23 @@ TEST_CASE("paste field: a flat field at a cell face gives the flat-surface rule'
   CHECK(f.conservation_error() < 1e-12);
 }
 
+TEST_CASE("paste field: the engine's layout (a time_s per group) gives the field of the particles' snapshot") {
+  test::ResultSpec s = field_spec(some_rocks());
+  s.flow_engine_layout = true;
+  test::ScratchDir dir("pf_engine");
+  const ResultSnapshot r = read(s, dir, "engine.h5");
+  REQUIRE(r.paste_field);
+  CHECK(r.paste_field->time_s == 0.5);
+  CHECK(r.paste_field->source.find("/flow/snapshots/000001") != std::string::npos);
+  const MixingMap f = map_of(r, true), flat = map_of(r, false);
+  for (std::size_t b = 0; b < f.paste_volume.size(); ++b)
+    CHECK(f.paste_volume[b] == doctest::Approx(flat.paste_volume[b]).epsilon(1e-12));
+  ResultOverrides first;
+  first.snapshot = 0;  // the particles at t = 0 get the all-air field of t = 0
+  const ResultSnapshot r0 = read_result(dir / "engine.h5", first);
+  CHECK(r0.paste_field->source.find("/flow/snapshots/000000") != std::string::npos);
+}
+
 TEST_CASE("paste field: the surface is the area-mean height function, partial cells included") {
   test::ResultSpec s = field_spec({{{0.1, 0.08, 0.05}, 0.003}});
   // Columns i = 0, 1 (half the footprint's area) lose their top paste cell (k = 9): 9 cm there, 10 cm elsewhere;
@@ -140,7 +157,7 @@ TEST_CASE("paste field: each rock is mixed by the paste share around it, without
         doctest::Approx(0.3 * cell_fluid).epsilon(1e-12));
 }
 
-TEST_CASE("paste field: without fluid_surface_z the field gives the surface; a --surface-z override keeps its own") {
+TEST_CASE("paste field: without fluid_surface_z the field gives the surface, and a --surface-z override keeps its own") {
   test::ResultSpec s = field_spec({{{0.1, 0.08, 0.05}, 0.003}});
   s.surface = false;
   test::ScratchDir dir("pf_nosurf");

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // [[fluid]] dynamics (model/fluid/fluid_scene.h): "at_rest" is the default and reads nothing more; "flow" needs
-// a grid that tiles the region, a top inside the domain and a kernel width at or above its minimum, and, not
-// yet coupled into the engine, stops the scene saying so. Every error names the scene file, its line and key.
+// a grid that tiles the region, a top inside the domain, a kernel width at or above its minimum, a coupling
+// interval >= 1, a regularisation with a yield stress, no collective rule and no second region. Every error
+// names the scene file, its line and key.
 #include <unistd.h>
 
 #include <filesystem>
@@ -83,6 +84,31 @@ TEST_CASE("fluid scene: dynamics = flow without a grid, with a kernel below its 
   says(error_of(d, with(with(tiny_scene(), "#DYN", "dynamics = \"flow\"\ncell = 0.005"), "x = [0.0, 0.06]",
                         "x = [0.0, 0.1]")),
        "reaches outside the [domain] box");
-  // A valid flow region is refused as not yet coupled, at its `dynamics` key; it never runs at rest instead.
-  says(flow("cell = 0.005\ntop = 0.15\nkernel_width = 2.5"), "not yet coupled into the engine");
+}
+
+TEST_CASE("fluid scene: a valid dynamics = flow region is the flow pass's, with its interval and regularisation") {
+  Dir d;
+  auto flow = [&](const std::string& keys) { return error_of(d, with(tiny_scene(), "#DYN", "dynamics = \"flow\"\n" + keys)); };
+  const std::string grid = "cell = 0.005\ntop = 0.15\nkernel_width = 2.5\n";
+  // A yield-stress paste in the flow solver is regularised, and m is never defaulted.
+  says(flow(grid), "needs regularisation = m");
+  says(flow(grid + "regularisation = 100\ncoupling_interval = 0"), "coupling_interval = 0 must be >= 1");
+  says(flow(grid + "regularisation = 100\ncollective = \"bearing_capacity\""), "is for dynamics = \"at_rest\" only");
+  says(error_of(d, with(tiny_scene(), "#DYN", "regularisation = 100")), "is a key of dynamics = \"flow\"");
+  // A second region beside a flow region (either order).
+  const std::string second = "[[fluid]]\nname = \"second\"\nx = [0.0, 0.06]\ny = [0.0, 0.06]\nbottom = 0.0\n"
+                             "surface = 0.01\ndensity = 1000\nrheology = \"newtonian\"\nviscosity = 0.001\n";
+  says(error_of(d, with(tiny_scene(), "#DYN", "dynamics = \"flow\"\n" + grid + "regularisation = 100\n" + second)),
+       "has that one [[fluid]] region only");
+  CHECK(error_of(d, with(tiny_scene(), "#DYN", "dynamics = \"flow\"\n" + grid + "regularisation = 100\ncoupling_interval = 20")).empty());
+  std::ofstream(d.path / "scene.toml")
+      << with(tiny_scene(), "#DYN", "dynamics = \"flow\"\n" + grid + "regularisation = 100\ncoupling_interval = 20");
+  const Scene s = load_scene(d.path / "scene.toml");
+  CHECK(s.plan.flow);
+  CHECK_FALSE(s.plan.fluid);  // the at-rest field never sees it
+  REQUIRE(s.fluid.size() == 1);
+  CHECK(s.fluid[0].flow);
+  CHECK(s.fluid[0].coupling_interval == 20);
+  CHECK(s.fluid[0].regularisation == 100.0);
+  CHECK(s.fluid[0].kernel_width == 2.5);
 }

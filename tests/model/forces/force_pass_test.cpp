@@ -17,14 +17,19 @@ using namespace pastemix;
 using namespace pastemix::model;
 
 TEST_CASE("force passes: the registered list, in the order of the step, with their profile lines") {
-  CHECK(std::tuple_size_v<ForcePasses> == 3);
+  CHECK(std::tuple_size_v<ForcePasses> == 4);
   CHECK(std::string(std::tuple_element_t<0, ForcePasses>::info.name) == "gravity");
   CHECK(std::string(std::tuple_element_t<1, ForcePasses>::info.name) == "walls");
   CHECK(std::string(std::tuple_element_t<2, ForcePasses>::info.name) == "fluid");
+  CHECK(std::string(std::tuple_element_t<3, ForcePasses>::info.name) == "flow");
   // A pass with a line of its own is named as its line; gravity is a term of the kick (no line of its own).
   CHECK(std::string(Profile::names[WallForces::info.stage]) == WallForces::info.name);
   CHECK(std::string(Profile::names[FluidForces::info.stage]) == FluidForces::info.name);
   CHECK(Gravity::info.stage == Profile::kick);
+  // The moving paste's pass (dynamics = "flow") is timed on the fluid line: a scene has one or the other.
+  CHECK(FlowForces::info.stage == Profile::fluid);
+  CHECK(!FlowForces::info.needs_pairs);
+  CHECK((FlowForces::info.adds & adds::kick) != 0);
   // What each declares: only the fluid pass reads the pair list (its collective rule) and owns a kick.
   CHECK(!Gravity::info.needs_pairs);
   CHECK(!WallForces::info.needs_pairs);
