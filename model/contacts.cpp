@@ -419,8 +419,9 @@ void PairList::rename(const std::vector<std::uint32_t>& map, std::size_t np) {
   index_by_first(np);
 }
 
-void PairList::partition(int n_threads, const std::vector<Vec3>& x) {
+void PairList::partition(int n_threads, const std::vector<Vec3>& x, const std::vector<double>* extra) {
   threads = n_threads;
+  ++partitions;
   const std::size_t np = x.size(), n = size(), ws = static_cast<std::size_t>(width);
   owner.assign(np, 0);
   own.resize(static_cast<std::size_t>(std::max(n_threads, 1)));
@@ -447,6 +448,8 @@ void PairList::partition(int n_threads, const std::vector<Vec3>& x) {
   // Cost of a particle, in rough units of one candidate test: its kick and walls (4), its candidate pairs
   // (1 each) and its touching pairs (5 more each: the force law). Cumulated over 4096 bins along the axis.
   std::vector<double> cost(np, 4.0);
+  if (extra && extra->size() == np)
+    for (std::size_t a = 0; a < np; ++a) cost[a] += (*extra)[a];
   for (std::size_t k = 0; k < n; ++k) {
     const double c = 1.0 + 5.0 * touching[k];
     cost[i[k]] += c;

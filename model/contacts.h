@@ -51,6 +51,7 @@ struct PairList {
   // threads run and is copied back into `history` by sync_cross().
   static constexpr std::uint32_t kNone = 0xffffffffu;
   int threads = 0;
+  long partitions = 0;  // partition() calls so far: a stamp that changes whenever the owners may have
   std::vector<std::uint8_t> owner;
   std::vector<std::vector<std::uint32_t>> own;
   std::vector<std::vector<std::uint32_t>> mine;
@@ -76,8 +77,9 @@ struct PairList {
   // loop_threads: of its loop (model/parallel.h); the result does not depend on it.
   void rebuild(CandidatePairs& c, const Particles& p, int n_materials, int loop_threads);
   // Splits the particles (positions x) into `threads` slabs of about equal cost (particles, pairs,
-  // touching pairs) across the longest side of their bounding box.
-  void partition(int threads, const std::vector<Vec3>& x);
+  // touching pairs, and `extra` per particle where given: the force passes' own work, e.g. a fluid kick)
+  // across the longest side of their bounding box.
+  void partition(int threads, const std::vector<Vec3>& x, const std::vector<double>* extra = nullptr);
   // Copies the cross pairs' history back into `history` (the threads are done).
   void sync_cross();
   // Sets ghost[parity] from the particles (before the threads start).

@@ -108,9 +108,24 @@ void World::rebuild_neighbors() {
   wall_contacts_.rebuild(walls_, p_, t_, cfg_.skin, threads);
   x_at_rebuild_ = p_.x;
   // The threads' particles and pairs (slabs of the new positions), for the thread count of this build.
-  pairs_.partition(threads, p_.x);
+  partition(threads, p_.x);
   t_at_rebuild_ = t_;
   ++profile_.rebuilds;
+}
+
+void World::partition(int threads, const std::vector<Vec3>& x) {
+  bool costed = false;
+  for_each_pass(forces_, [&](const auto& pass) {
+    if constexpr (requires { pass.partition_cost(0L); }) costed |= pass.active();
+  });
+  if (!costed || threads <= 1) return pairs_.partition(threads, x);
+  pass_cost_.assign(p_.size(), 0.0);
+  for_each_pass(forces_, [&](const auto& pass) {
+    if constexpr (requires { pass.partition_cost(0L); })
+      if (pass.active())
+        for (std::size_t a = 0; a < p_.size(); ++a) pass_cost_[a] += pass.partition_cost(static_cast<long>(a));
+  });
+  pairs_.partition(threads, x, &pass_cost_);
 }
 
 // The cell order of the particles: a grid over their bounding box with the cells of the finest neighbour
@@ -321,8 +336,7 @@ void World::step_lane(const PassStep<Law, Roll>& s, Lane& lane, Then then, doubl
   for_each_pass(forces_, [&](auto& pass) {
     if constexpr ((std::decay_t<decltype(pass)>::info.adds & adds::kick) != 0)
       if (pass.active()) {
-        for (long a : pass.members())
-          if (lane.threads == 1 || pairs_.owner[static_cast<std::size_t>(a)] == lane.me) close_kick(lane, a, then, h);
+        for (long a : pass.members(lane.me)) close_kick(lane, a, then, h);
         lane.time(pass.info.stage);
       }
   });
@@ -384,10 +398,18 @@ long World::passes(long n, double h, bool initial, double& moved2) {
   Batch batch;
   batch.n = n, batch.h = h, batch.initial = initial, batch.moved2 = moved2;
   batch.threads = threads_for(static_cast<long>(p_.size()));
-  if (pairs_.threads != batch.threads) pairs_.partition(batch.threads, p_.x);
+  if (pairs_.threads != batch.threads) partition(batch.threads, p_.x);
   if (batch.threads > 1) pairs_.fill_ghosts(p_);
   std::get<WallForces>(forces_).resize(batch.threads);
   for (auto& r : results_) r.resize(static_cast<std::size_t>(batch.threads));
+  auto timed_hooks = [&](auto&& hook) {  // the passes' serial work around the team, on the fluid line
+    StageTimer timer{profile_.seconds[Profile::fluid]};
+    for_each_pass(forces_, hook);
+  };
+  timed_hooks([&](auto& pass) {
+    if constexpr (requires { pass.begin_batch(p_, pairs_, batch.threads); })
+      if (pass.active()) pass.begin_batch(p_, pairs_, batch.threads);
+  });
   std::visit(
       [&](const auto& table, const auto& rolling) {
         using Law = LawOf<decltype(table)>;
@@ -396,7 +418,12 @@ long World::passes(long n, double h, bool initial, double& moved2) {
         run_lane<Law, Roll>(table, rolling, batch);
       },
       laws_, rolling_);
-  // A pass's failure inside the region (it cannot leave it: forces/flow_forces.h) stops the run here.
+  timed_hooks([](auto& pass) {
+    if constexpr (requires { pass.end_batch(); })
+      if (pass.active()) pass.end_batch();
+  });
+  // A pass's failure inside the region (it cannot leave it: forces/flow_forces.h) stops the run here, after
+  // the batch's hooks (the fluid field's state is then whole).
   for_each_pass(forces_, [](const auto& pass) {
     if constexpr (requires { pass.rethrow(); })
       if (pass.active()) pass.rethrow();

@@ -119,6 +119,9 @@ class World {
   // map and rebuilds the lists (RuntimeFailure past max_escaped_fraction).
   void remove_escaped(double& moved2);
   void rebuild_neighbors();
+  // pairs_.partition with the passes' own cost per particle (partition_cost(a), where a pass has one).
+  void partition(int threads, const std::vector<Vec3>& x);
+  std::vector<double> pass_cost_;
   // The spatial sort (WorldConfig::sort_every): the permutation old -> new of the cell order, then every
   // per-particle array and list moved through it (Particles::apply_map, PairList / WallContacts::rename,
   // the passes' particles_moved). Serial and a function of the positions only: the same for any threads.

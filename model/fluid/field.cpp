@@ -31,30 +31,94 @@ inline double wetted_volume(const FluidRegion& reg, double z, double r, double z
 
 }  // namespace
 
-void FluidField::refresh(const Particles& p) {
-  candidates_.clear();
-  const long n = static_cast<long>(p.size());
-  for (long a = 0; a < n; ++a) {
+void FluidField::refresh(const Particles& p, Lane& lane, const std::vector<std::uint32_t>* own) const {
+  lane.candidates.clear();
+  auto test = [&](long a) {
     const Vec3& x = p.x[a];
     const double reach = p.radius[a] + margin_;
     for (std::size_t k = 0; k < regions_.size(); ++k) {
       const FluidRegion& reg = regions_[k];
       if (x.x >= reg.x_min - reach && x.x <= reg.x_max + reach && x.y >= reg.y_min - reach &&
-          x.y <= reg.y_max + reach && x.z >= reg.z_bottom - reach && x.z <= surface_[k] + reach) {
-        candidates_.push_back(a);
-        break;
+          x.y <= reg.y_max + reach && x.z >= reg.z_bottom - reach && x.z <= lane.surface[k] + reach) {
+        lane.candidates.push_back(a);
+        return;
       }
     }
+  };
+  if (own)
+    for (std::uint32_t a : *own) test(static_cast<long>(a));
+  else
+    for (long a = 0; a < static_cast<long>(p.size()); ++a) test(a);
+  lane.surface_at_refresh = lane.surface;
+  lane.stale = false, lane.refreshed = true;
+}
+
+template <class List, class F>
+void FluidField::merged(List&& list, std::vector<std::size_t>& head, F&& f) const {
+  const std::size_t lanes = lanes_.size();
+  // Lanes whose lists follow each other (every particle of one below every particle of the next: the
+  // World's slabs after its spatial sort) are read one after the other, without comparisons.
+  bool ordered = true;
+  long last = -1;
+  for (std::size_t t = 0; t < lanes && ordered; ++t) {
+    const auto& l = list(lanes_[t]);
+    if (l.empty()) continue;
+    ordered = l.front() > last, last = l.back();
   }
-  surface_at_refresh_ = surface_;
-  stale_ = false;
+  if (ordered) {
+    for (std::size_t t = 0; t < lanes; ++t) {
+      const std::size_t n = list(lanes_[t]).size();
+      for (std::size_t q = 0; q < n; ++q) f(lanes_[t], q);
+    }
+    return;
+  }
+  // A k-way merge of ascending lists (head: [0, lanes) next entry, [lanes, 2 lanes) length), read once per
+  // lane: the lists of the other threads are not re-read in the loop.
+  head.assign(2 * lanes, 0);
+  for (std::size_t t = 0; t < lanes; ++t) head[lanes + t] = list(lanes_[t]).size();
+  for (;;) {
+    std::size_t best = lanes;
+    long low = 0;
+    for (std::size_t t = 0; t < lanes; ++t)
+      if (head[t] < head[lanes + t]) {
+        const long a = list(lanes_[t])[head[t]];
+        if (best == lanes || a < low) best = t, low = a;
+      }
+    if (best == lanes) return;
+    f(lanes_[best], head[best]++);
+  }
+}
+
+void FluidField::rise(int par, Lane& scratch, std::vector<double>& surface) const {
+  std::vector<double>& wet = scratch.sum;  // reused: no allocation per step
+  wet.assign(regions_.size(), 0.0);
+  const auto p = static_cast<std::size_t>(par);
+  merged([p](const Lane& l) -> const std::vector<long>& { return l.members[p]; }, scratch.head,
+         [&](const Lane& l, std::size_t q) { wet[static_cast<std::size_t>(l.wet[p][q].region)] += l.wet[p][q].volume; });
+  for (std::size_t k = 0; k < regions_.size(); ++k)
+    if (regions_[k].surface_rise) surface[k] = regions_[k].z_surface0 + wet[k] / regions_[k].area();
+}
+
+void FluidField::gather_members() {
+  members_.clear();
+  const auto p = static_cast<std::size_t>(lanes_[0].par);
+  merged([p](const Lane& l) -> const std::vector<long>& { return l.members[p]; }, lanes_[0].head,
+         [&](const Lane& l, std::size_t q) { members_.push_back(l.members[p][q]); });
 }
 
 void FluidField::update(const Particles& p, const std::vector<std::uint32_t>* pair_i,
-                        const std::vector<std::uint32_t>* pair_j, int threads) {
+                        const std::vector<std::uint32_t>* pair_j) {
+  begin_batch(p, 1, -1);
+  update_part(p, 0, nullptr);
+  if (lanes_[0].cluster_due) step_clusters(p, pair_i, pair_j, 1);
+  end_batch();
+}
+
+void FluidField::begin_batch(const Particles& p, int threads, long partition) {
   const std::size_t n = p.size();
-  const bool listed = margin_ > 0.0;
-  if (!listed || region_of_.size() != n) {  // every flag anew (no list, or particles were added)
+  const bool sized = region_of_.size() == n;
+  const bool same_lanes = sized && partition == partition_ && lanes_.size() == static_cast<std::size_t>(threads);
+  if (!sized) {  // every flag anew (the first step, or particles were removed)
     region_of_.assign(n, -1);
     v_sub_.assign(n, 0.0);
     if (rest_region_.size() != n) {
@@ -64,46 +128,87 @@ void FluidField::update(const Particles& p, const std::vector<std::uint32_t>* pa
       aff_fgain_.assign(n, 0.0);
     }
     members_.clear();
-    stale_ = listed;
-  }
-  if (listed) {
-    for (std::size_t k = 0; k < surface_.size() && !stale_; ++k)
-      if (surface_[k] - surface_at_refresh_[k] > 0.5 * margin_) stale_ = true;
-    if (stale_) refresh(p);
+  } else if (!same_lanes) {
+    // The owners may have changed: the last members are cleared here, where a lane would clear only its own.
     for (long a : members_) region_of_[static_cast<std::size_t>(a)] = -1, v_sub_[static_cast<std::size_t>(a)] = 0.0;
   }
-  members_.clear();
-  std::vector<double>& wet = wet_;  // reused: no allocation per step
-  wet.assign(regions_.size(), 0.0);
+  if (!same_lanes) {
+    lanes_.assign(static_cast<std::size_t>(threads), Lane{});
+    for (Lane& lane : lanes_) lane.surface_at_refresh = surface_;
+    partition_ = partition;
+  }
+  if (cluster_interval_ != INFINITY && factor_.size() != n) factor_.assign(n, 1.0), factored_.clear(), since_clusters_ = 0;
+  for (Lane& lane : lanes_) lane.surface = surface_, lane.since = since_clusters_, lane.pending = false;
+}
+
+void FluidField::update_part(const Particles& p, int thread, const std::vector<std::uint32_t>* own) {
+  Lane& lane = lanes_[static_cast<std::size_t>(thread)];
+  if (lane.pending) rise(lane.par, lane, lane.surface);  // the last step's rise (every lane: the same bits)
+  const bool listed = margin_ > 0.0;
+  if (listed) {
+    for (std::size_t k = 0; k < lane.surface.size() && !lane.stale; ++k)
+      if (lane.surface[k] - lane.surface_at_refresh[k] > 0.5 * margin_) lane.stale = true;
+    if (lane.stale) refresh(p, lane, own);
+    for (long a : lane.members[static_cast<std::size_t>(lane.par)])
+      region_of_[static_cast<std::size_t>(a)] = -1, v_sub_[static_cast<std::size_t>(a)] = 0.0;
+  }
+  lane.par ^= 1;
+  std::vector<long>& members = lane.members[static_cast<std::size_t>(lane.par)];
+  std::vector<Wet>& wet = lane.wet[static_cast<std::size_t>(lane.par)];
+  members.clear(), wet.clear();
   auto visit = [&](std::size_t a) {
     const Vec3& x = p.x[a];
     for (std::size_t k = 0; k < regions_.size(); ++k) {
       const FluidRegion& reg = regions_[k];
       if (!reg.contains_xy(x.x, x.y)) continue;
-      const double vs = wetted_volume(reg, x.z, p.radius[a], surface_[k], reg.partial_submergence);
+      const double vs = wetted_volume(reg, x.z, p.radius[a], lane.surface[k], reg.partial_submergence);
       if (vs <= 0.0) continue;
       region_of_[a] = static_cast<int>(k);
       v_sub_[a] = vs;
       keep_sphere(p, a, static_cast<int>(k));
-      members_.push_back(static_cast<long>(a));
-      wet[k] += vs;
+      members.push_back(static_cast<long>(a));
+      wet.push_back({vs, static_cast<int>(k)});
       return;  // the first region that holds the particle owns it
     }
+    region_of_[a] = -1, v_sub_[a] = 0.0;
   };
-  // Both loops visit particles in ascending index order, so the surface sums are the same bits either way.
   if (listed)
-    for (long a : candidates_) visit(static_cast<std::size_t>(a));
+    for (long a : lane.candidates) visit(static_cast<std::size_t>(a));
+  else if (own)
+    for (std::uint32_t a : *own) visit(a);
   else
-    for (std::size_t a = 0; a < n; ++a) visit(a);
-  for (std::size_t k = 0; k < regions_.size(); ++k)
-    if (regions_[k].surface_rise) surface_[k] = regions_[k].z_surface0 + wet[k] / regions_[k].area();
-
+    for (std::size_t a = 0; a < p.size(); ++a) visit(a);
+  lane.pending = true;
   // Collective yield: the clusters every `every` steps (the smallest interval of the collective regions).
-  if (cluster_interval_ == INFINITY) return;
-  if (factor_.size() != n) factor_.assign(n, 1.0), factored_.clear(), since_clusters_ = 0;
   const long every = dt_ > 0.0 ? std::max(1L, std::lround(cluster_interval_ / dt_)) : 1L;
-  if (since_clusters_ % every == 0 && !clusters_unchanged(p)) update_clusters(p, pair_i, pair_j, threads);
-  ++since_clusters_;
+  lane.cluster_due = cluster_interval_ != INFINITY && lane.since % every == 0;
+  ++lane.since;
+}
+
+void FluidField::step_clusters(const Particles& p, const std::vector<std::uint32_t>* pair_i,
+                               const std::vector<std::uint32_t>* pair_j, int threads) {
+  rise(lanes_[0].par, lanes_[0], surface_);  // this step's rise: the clusters see the risen surface
+  for (Lane& lane : lanes_) lane.surface = surface_, lane.pending = false;
+  gather_members();
+  if (!clusters_unchanged(p)) update_clusters(p, pair_i, pair_j, threads);
+}
+
+void FluidField::end_batch() {
+  if (lanes_.empty()) return;
+  Lane& first = lanes_[0];
+  if (first.pending) {
+    rise(first.par, first, surface_);
+    for (Lane& lane : lanes_) lane.surface = surface_, lane.pending = false;
+  }
+  gather_members();
+  bool refreshed = false;
+  for (Lane& lane : lanes_) refreshed |= lane.refreshed, lane.refreshed = false;
+  if (refreshed) {
+    candidates_.clear();
+    merged([](const Lane& l) -> const std::vector<long>& { return l.candidates; }, first.head,
+           [&](const Lane& l, std::size_t q) { candidates_.push_back(l.candidates[q]); });
+  }
+  surface_at_refresh_ = first.surface_at_refresh, stale_ = first.stale, since_clusters_ = first.since;
 }
 
 bool FluidField::clusters_unchanged(const Particles& p) const {
@@ -208,6 +313,10 @@ void FluidField::particles_moved(const std::vector<std::uint32_t>& map) {
   rename(candidates_, map);
   rename(members_, map);
   rename(factored_, map);
+  for (Lane& lane : lanes_) {  // the next begin_batch clears the last members by their new indices
+    rename(lane.candidates, map);
+    for (auto& list : lane.members) rename(list, map);
+  }
   // The clusters' change test compares member lists and positions by index: renamed, it would compare
   // other orders. The rebuild that sorted has bumped pairs_version_ (mark_stale) and so forces the next
   // cluster update anyway; this only says so here too.
@@ -318,6 +427,7 @@ void FluidField::restored(const Particles& p) {
   const std::size_t n = p.size();
   aff_k_.assign(n, 0.0), aff_limit2_.assign(n, 0.0), aff_decay_.assign(n, 1.0), aff_gain_.assign(n, 0.0);
   aff_fgain_.assign(n, 0.0);
+  lanes_.clear(), partition_ = kNoLanes;  // made anew from members_ by the next begin_batch
   if (rest_region_.size() != n) return;  // update() makes every constant anew
   for (std::size_t a = 0; a < n; ++a)
     if (rest_region_[a] >= 0) keep_affine(p, a, rest_region_[a], true);

@@ -41,6 +41,7 @@
 // surface moves by far less than a radius per step). z_s0 is the height of the fluid without any rock.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -95,13 +96,27 @@ class FluidField {
 
   // Region membership and submerged volumes at the current positions; then the surfaces rise. With a
   // collective region, also its clusters every collective_interval: they need the candidate pairs (dense
-  // indices, any superset of the touching pairs: the World's pair list).
-  // With threads > 1 (the World's fluid pass, called by one thread of a team of that many), a cluster update
-  // of a single collective region stops before the footprints and clusters_pending() says so: then every
-  // thread t of the team calls footprints(t), and after a barrier one thread calls finish_clusters(p): the
-  // same bits as threads = 1 (collective.h CollectiveYield::begin / footprints / finish).
+  // indices, any superset of the touching pairs: the World's pair list). One call is one whole step.
   void update(const Particles& p, const std::vector<std::uint32_t>* pair_i = nullptr,
-              const std::vector<std::uint32_t>* pair_j = nullptr, int threads = 1);
+              const std::vector<std::uint32_t>* pair_j = nullptr);
+  // The same step shared by a team of `threads` (the World's fluid pass, forces/fluid_forces.h), each thread
+  // over its own particles, with no serial part on most steps:
+  //   begin_batch(p, threads, partition)  one thread, before the team runs (partition: a stamp that changes
+  //                                       whenever the particles' owners may have: PairList::partitions);
+  //   update_part(p, t, own)              each step, every thread t: own = its particles, ascending (null: all);
+  //   if cluster_due(t): a barrier, then one thread step_clusters(p, pair_i, pair_j, threads); if that left
+  //                      clusters_pending(): every thread footprints(t), a barrier, one thread finish_clusters(p);
+  //   end_batch()                         one thread, after the team.
+  // Each thread keeps its own candidates, members and copy of the surfaces (Lane). A step's surface rise is
+  // summed over every thread's members in ascending particle order, the one-thread order, by each thread at
+  // the start of its next update_part (or by step_clusters / end_batch), from double-buffered lists: so the
+  // bits are those of update() for any thread count, and a step needs no barrier of its own.
+  void begin_batch(const Particles& p, int threads, long partition);
+  void update_part(const Particles& p, int thread, const std::vector<std::uint32_t>* own);
+  bool cluster_due(int thread) const { return lanes_[static_cast<std::size_t>(thread)].cluster_due; }
+  void step_clusters(const Particles& p, const std::vector<std::uint32_t>* pair_i,
+                     const std::vector<std::uint32_t>* pair_j, int threads);
+  void end_batch();
   bool clusters_pending() const { return pending_region_ >= 0; }
   void footprints(int thread) { collective_.footprints(thread); }
   void finish_clusters(const Particles& p);
@@ -111,13 +126,17 @@ class FluidField {
     dt_ = dt, g_ = g;
   }
   // Candidate list (see above): margin in m (the Verlet skin); stale at every pair-list rebuild.
-  void set_candidate_margin(double margin) { margin_ = margin, stale_ = true; }
+  void set_candidate_margin(double margin) { margin_ = margin, stale_ = true, lanes_.clear(), partition_ = kNoLanes; }
   // The pair list was rebuilt (World): also invalidates the clusters kept while nothing moved.
-  void mark_stale() { stale_ = true, ++pairs_version_; }
+  void mark_stale() {
+    stale_ = true, ++pairs_version_;
+    for (Lane& lane : lanes_) lane.stale = true;
+  }
   // Particles were removed (World, on_exit = "remove"): every per-particle flag and list is anew at the
   // next update() (region_of_ no longer matches the particle count), the candidates refreshed.
   void particles_removed() {
     region_of_.clear(), v_sub_.clear(), members_.clear(), candidates_.clear(), stale_ = true;
+    lanes_.clear(), partition_ = kNoLanes;
     factor_.clear(), factored_.clear();  // indices changed: the clusters are recomputed at the next update
     phi_.clear(), y_.clear(), d0_.clear(), rest_region_.clear(), clustered_members_.clear();
     lin_k_.clear(), lin_decay_.clear(), lin_gain_.clear();
@@ -131,7 +150,12 @@ class FluidField {
   // ascending, so each particle keeps its region, its constants and its cluster factor (the same kicks as
   // without the sort; only sums over particles, such as the surface rise, see another order).
   void particles_moved(const std::vector<std::uint32_t>& map);
-  std::size_t candidate_count() const { return margin_ > 0.0 ? candidates_.size() : region_of_.size(); }
+  std::size_t candidate_count() const {
+    if (!(margin_ > 0.0)) return region_of_.size();
+    std::size_t c = 0;
+    for (const Lane& lane : lanes_) c += lane.candidates.size();
+    return c;
+  }
   // New velocity after a kick of length h (s) of particle a under the non-drag force F (N, gravity
   // included, buoyancy not: added here); g is the gravity vector (m/s2). mass and radius are particle a's
   // (those of the Particles update() saw: the per-sphere constants were kept for them).
@@ -159,8 +183,17 @@ class FluidField {
   }
 
   bool inside(long a) const { return region_of_[a] >= 0; }
-  // The particles inside a region at the last update(), ascending (the World's fluid pass).
+  // inside(a), false where the field has no flags for a yet (before the first update, after a removal).
+  bool known_inside(long a) const {
+    return static_cast<std::size_t>(a) < region_of_.size() && region_of_[static_cast<std::size_t>(a)] >= 0;
+  }
+  // The particles inside a region at the last update() or end_batch(), ascending.
   const std::vector<long>& members() const { return members_; }
+  // Thread t's particles inside a region at its last update_part, ascending (the World's fluid pass).
+  const std::vector<long>& members(int thread) const {
+    const Lane& lane = lanes_[static_cast<std::size_t>(thread)];
+    return lane.members[static_cast<std::size_t>(lane.par)];
+  }
   int region_of(long a) const { return region_of_[a]; }
   double submerged_volume(long a) const { return v_sub_[a]; }
   const std::vector<FluidRegion>& regions() const { return regions_; }
@@ -179,10 +212,36 @@ class FluidField {
   std::vector<double> v_sub_;    // m3, per particle
   double margin_ = 0.0;                     // m; 0: no candidate list
   bool stale_ = true;
-  std::vector<long> candidates_, members_;  // ascending particle indices
+  // At the end of a batch (end_batch), what the threads' lanes hold, merged: ascending particle indices
+  // (the checkpoint keeps them; a restored run makes its lanes anew from members_).
+  std::vector<long> candidates_, members_;
   std::vector<double> surface_at_refresh_;  // m, per region
-  std::vector<double> wet_;                 // m3 per region, scratch of update()
-  void refresh(const Particles& p);
+  // One thread's share of the step (update() uses lane 0 for every particle).
+  struct Wet {
+    double volume;  // m3, V_sub of the member
+    int region;
+  };
+  struct alignas(64) Lane {
+    std::vector<long> candidates;              // the thread's particles within the margin, ascending
+    std::array<std::vector<long>, 2> members;  // ascending; [par]: those of the last update_part
+    std::array<std::vector<Wet>, 2> wet;       // per member: its wetted volume and region
+    int par = 0;
+    bool stale = true, refreshed = false, pending = false, cluster_due = false;  // pending: rise not summed
+    long since = 0;                            // steps since the last cluster update (since_clusters_)
+    std::vector<double> surface, surface_at_refresh;  // m, the thread's copy (the same bits in every lane)
+    std::vector<double> sum;                   // m3 per region, scratch of rise()
+    std::vector<std::size_t> head;             // scratch of the merges
+  };
+  static constexpr long kNoLanes = -2;
+  std::vector<Lane> lanes_;
+  long partition_ = kNoLanes;  // the stamp begin_batch() made the lanes for
+  void refresh(const Particles& p, Lane& lane, const std::vector<std::uint32_t>* own) const;
+  // The surfaces after the step whose members are in every lane's [par] (sums in ascending particle order).
+  void rise(int par, Lane& scratch, std::vector<double>& surface) const;
+  // Calls f(lane, q) for every lane's entry q of list(lane), in ascending particle order.
+  template <class List, class F>
+  void merged(List&& list, std::vector<std::size_t>& head, F&& f) const;
+  void gather_members();  // members_ from the lanes' last members
   // Per particle, what the kick needs and update() already knows (the kick's own expressions, so the same
   // bits): the submerged fraction phi of this step, and, while the particle stays in region rest_region_,
   // its yield number and rest drag D(0+) (both constant for a sphere in one fluid; gravity g_).

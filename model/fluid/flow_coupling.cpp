@@ -159,6 +159,7 @@ void FlowCoupling::begin_cycle(const Particles& p) {
   members_.clear();
   for (std::size_t a = 0; a < n; ++a)
     if (in_box(s_->region, p.x[a])) member_[a] = 1, members_.push_back(static_cast<long>(a));
+  ++membership_;
   step_in_cycle_ = 0;
 }
 
@@ -222,6 +223,7 @@ void FlowCoupling::renumber(const std::vector<std::uint32_t>& map, std::size_t c
   members_.clear();
   for (std::size_t a = 0; a < member_.size(); ++a)
     if (member_[a]) members_.push_back(static_cast<long>(a));
+  ++membership_;
 }
 
 namespace {
@@ -271,6 +273,7 @@ void FlowCoupling::restore(const std::vector<char>& bytes, const Particles& p) {
   StateReader rd({reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()}, "checkpoint (flow state)");
   auto io = [&](auto& v) { rd.get(v); };
   io(started_);
+  ++membership_;  // whatever the bytes hold, the members are theirs now
   if (!started_) return;
   start(p);  // the per-particle constants (diameters, masses, drag laws) of the restored particles
   Saved st;

@@ -89,6 +89,9 @@ class FlowCoupling {
   }
   bool claims(long a) const { return member_[static_cast<std::size_t>(a)] != 0; }
   const std::vector<long>& members() const { return members_; }
+  // A stamp that changes whenever members() may have (a cycle's start, a renumbering, a restore): the flow
+  // pass splits the members by thread again only then (forces/flow_forces.h).
+  long membership() const { return membership_; }
   // The half kick h (s) of member a under F (N: contacts + m g): the paste's drag and pending pressure force.
   Vec3 kick(long a, const Vec3& v, const Vec3& F, double mass, double h) const;
 
@@ -120,7 +123,7 @@ class FlowCoupling {
   std::vector<char> member_;   // per particle: in the flow box at the cycle's start
   std::vector<long> members_;  // ascending
   std::vector<long> changed_;  // scratch of prepare()
-  long step_in_cycle_ = 0, cycles_ = 0;
+  long step_in_cycle_ = 0, cycles_ = 0, membership_ = 0;
   bool started_ = false;
   std::exception_ptr failure_;
 };

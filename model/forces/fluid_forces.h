@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // The fluid pass: buoyancy and the drag of the fluid regions ([[fluid]], fluid/field.h). Each step, before
-// the pair pass, the field finds the particles inside a region and their submerged volumes (one thread: it
-// reads every particle's position and, for the collective rule, the pair list); the plain kick skips those
+// the pair pass, the field finds the particles inside a region and their submerged volumes (each thread for
+// its own particles; the collective rule's cluster updates read every member and the pair list, behind a
+// barrier, every collective_interval); the plain kick skips those
 // particles and the pass kicks them with FluidField::kick, i.e. the stable implicit drag kick of
 // fluid/drag_kick.h (buoyancy + drag integrated exactly for the linear part, never reversing v). Without
 // [[fluid]] there is no field and the pass is inactive: one pointer test per kick.
@@ -25,21 +26,32 @@ struct FluidForces {
 
   bool active() const { return field != nullptr; }
 
+  // Before the team runs: the field's per-particle arrays and its threads' lanes (made anew whenever the
+  // pair list was partitioned again: the owners may have changed).
+  void begin_batch(const Particles& p, const PairList& pairs, int threads) {
+    field->begin_batch(p, threads, pairs.partitions);
+  }
   template <class Law, class Roll>
   void prepare(const PassStep<Law, Roll>& s) {
-    // The update reads the positions of every particle (all drifted: the step's barrier) and must precede
-    // every kick: one thread, then the barrier of `single`.
+    // Each thread finds which of its own particles are inside (every position it reads is its own): no
+    // barrier, except on the steps of a cluster update, which read every member and the pair list.
+    const int threads = omp_get_num_threads();
+    field->update_part(s.p, s.thread, threads > 1 ? &s.pairs.own[static_cast<std::size_t>(s.thread)] : nullptr);
+    if (!field->cluster_due(s.thread)) return;
+#pragma omp barrier
 #pragma omp single
-    field->update(s.p, &s.pairs.i, &s.pairs.j, omp_get_num_threads());
+    field->step_clusters(s.p, &s.pairs.i, &s.pairs.j, threads);
     // A cluster update's footprints (the costly part of the collective rule) are shared by the team, then
     // one thread applies the factors; the single's barriers keep every kick after it (same bits as 1 thread).
     if (field->clusters_pending()) {
-      field->footprints(omp_get_thread_num());
+      field->footprints(s.thread);
 #pragma omp barrier
 #pragma omp single
       field->finish_clusters(s.p);
     }
   }
+  // After the team: the last step's surface rise, the merged member list (members(), the checkpoint).
+  void end_batch() { field->end_batch(); }
 
   // The pair list was rebuilt: no particle has moved skin/2 since, the candidates are refreshed.
   void lists_rebuilt() { field->mark_stale(); }
@@ -49,7 +61,12 @@ struct FluidForces {
   void particles_moved(const std::vector<std::uint32_t>& map) { field->particles_moved(map); }
 
   bool claims(long a) const { return field->inside(a); }
-  const std::vector<long>& members() const { return field->members(); }
+  // Particle a's share of the threads' partition beyond a dry particle's (PairList::partition's units, one
+  // candidate pair test): a member of the last update costs its membership test, constants and drag kick,
+  // about 8 units (estimated from the case-3 profile: with none, one thread held all of the paste's rock).
+  double partition_cost(long a) const { return field->known_inside(a) ? 8.0 : 0.0; }
+  // Thread t's particles that the pass kicks (its own, ascending).
+  const std::vector<long>& members(int thread) const { return field->members(thread); }
   // New velocity after a half kick h (s) under the non-drag force F (N, gravity included).
   Vec3 kick(long a, const Vec3& v, const Vec3& F, double mass, double radius, double h, const Vec3& g) const {
     return field->kick(a, v, F, mass, radius, h, g);

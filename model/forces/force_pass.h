@@ -12,15 +12,21 @@
 //                       the plain half kick v += (f/m + a) h (gravity);
 //   adds::force         add(step, a): adds to particle a's force / torque / rolling capacity after the pair
 //                       pass, per particle by its owner thread (walls);
-//   adds::kick          claims(a), kick(a, v, F, m, r, h, g), members(): owns the half kick of the particles it
+//   adds::kick          claims(a), kick(a, v, F, m, r, h, g), members(t): owns the half kick of the particles it
 //                       claims (fluid: the stable implicit drag kick of fluid/drag_kick.h, the one the tests
-//                       test); the plain kick skips them, the pass kicks and drifts them after the others;
+//                       test); the plain kick skips them, the pass kicks and drifts them after the others
+//                       (members(t): thread t's own, ascending);
 // optionally
 //   prepare(step)       once per step and thread, before the pair pass (the walls' positions at t; the fluid
-//                       field's update, on one thread, with its barrier);
+//                       field's update of the thread's own particles; the flow coupling's cycle, on one
+//                       thread, with its barrier);
+//   begin_batch(p, pairs, threads), end_batch()  on one thread, before and after the team runs a batch of
+//                       steps (the fluid field's lanes, and the rise of its batch's last step);
 //   lists_rebuilt(), particles_removed() or particles_removed(map, count)  after a neighbour rebuild / an
 //                       outflow removal (the fluid field's candidate list and per-particle arrays; the flow
 //                       coupling's, renamed through the map);
+//   partition_cost(a)   particle a's own work in the pass, in PairList::partition's units, so that the
+//                       threads' slabs balance it too (the fluid: its members' drag kicks);
 //   particles_moved(map)  after the World's spatial sort (map: old -> new dense index, a permutation): a pass
 //                       with per-particle state moves it with the particles.
 // Each particle's operations stay its own and in the same order (pair forces, then the force passes in
@@ -85,7 +91,7 @@ concept ForcePass =
     (!(P::info.adds & adds::kick) || requires(const P& cp, long a, const Vec3& v) {
       { cp.claims(a) } -> std::same_as<bool>;
       { cp.kick(a, v, v, 1.0, 1.0, 1.0, v) } -> std::same_as<Vec3>;
-      { cp.members() } -> std::convertible_to<const std::vector<long>&>;
+      { cp.members(0) } -> std::convertible_to<const std::vector<long>&>;
     });
 
 // The registered passes, in the order of the step.

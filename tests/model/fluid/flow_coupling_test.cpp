@@ -72,7 +72,9 @@ TEST_CASE("flow pass: a sphere at Y = 0.08 is held by the yield part with the pa
 TEST_CASE("flow pass: the same bits at 1 and 2 threads and in batches (contacts, walls, the exchange's velocity changes)") {
   // 8 g of 5-6 mm rocks in a Newtonian paste (0.05 Pa s) of the 6 x 6 cm box, and three stacks of two touching
   // spheres in the middle, the bottom one on the floor: contacts (pairs and walls) across the threads' slabs
-  // while the exchange changes velocities at every cycle's end (every 10 steps).
+  // while the exchange changes velocities at every cycle's end (every 10 steps). One more sphere starts 0.5 mm
+  // above the flow box's top (z = 0.12 m) and falls into it after ~500 steps, inside a batch of 300: the members
+  // change between two partitions, so a thread's own list of members (forces/flow_forces.h) must follow them.
   std::string text =
       model::test::flow_box(2e-5, 0.06, "density = 1800\nrheology = \"newtonian\"\nviscosity = 0.05\ncurve = \"stokes\"\n",
                             "coupling_interval = 10\n") +
@@ -81,28 +83,33 @@ TEST_CASE("flow pass: the same bits at 1 and 2 threads and in batches (contacts,
   for (double y : {0.015, 0.03, 0.045})
     for (double z : {0.00275, 0.008251})
       text += fmt::format("[[particle]]\nmaterial = \"rock\"\nradius = 0.00275\nposition = [0.03, {}, {}]\n", y, z);
+  text += "[[particle]]\nmaterial = \"rock\"\nradius = 0.00275\nposition = [0.03, 0.03, 0.1205]\n";
   auto run = [&](int threads, long batch) {
     omp_set_num_threads(threads);
     Scene scene = model::test::scene_from(text);
     scene.config.parallel_min_items = 0;  // the parallel paths even for this small scene
     World w = make_world(scene);
     long contacts = 0;  // the most pair + wall contacts at a batch's end
+    std::size_t members_first = 0;  // the flow's members after the first batch
     for (long k = 0; k < 1000; k += batch) {
       w.advance(std::min(batch, 1000 - k));
       const Energies e = w.energies();
       contacts = std::max(contacts, e.pair_contacts + e.wall_contacts);
+      if (k == 0) members_first = w.flow()->members().size();
     }
     omp_set_num_threads(omp_get_num_procs());
     return std::make_tuple(w.particles().x, w.particles().v, w.flow()->solver().velocity()[2], contacts,
-                           w.flow()->cycles());
+                           w.flow()->cycles(), members_first, w.flow()->members().size());
   };
-  const auto [xa, va, ua, pairs, cycles] = run(1, 1);
-  const auto [xb, vb, ub, pairs_b, cycles_b] = run(2, 1);
-  const auto [xc, vc, uc, pairs_c, cycles_c] = run(2, 300);
-  const auto [xd, vd, ud, pairs_d, cycles_d] = run(1, 300);
-  MESSAGE(fmt::format("{} spheres, at most {} contacts (pairs and walls), {} cycles", xa.size(), pairs, cycles));
+  const auto [xa, va, ua, pairs, cycles, first, last] = run(1, 1);
+  const auto [xb, vb, ub, pairs_b, cycles_b, first_b, last_b] = run(2, 1);
+  const auto [xc, vc, uc, pairs_c, cycles_c, first_c, last_c] = run(2, 300);
+  const auto [xd, vd, ud, pairs_d, cycles_d, first_d, last_d] = run(1, 300);
+  MESSAGE(fmt::format("{} spheres, at most {} contacts (pairs and walls), {} cycles, {} then {} members", xa.size(),
+                      pairs, cycles, first, last));
   CHECK(cycles == 100);
   CHECK(pairs > 0);
+  CHECK(last == first + 1);  // the falling sphere joined the members
   for (const auto* x : {&xb, &xc, &xd}) CHECK(model::test::same_bits(xa, *x));
   for (const auto* v : {&vb, &vc, &vd}) CHECK(model::test::same_bits(va, *v));
   for (const auto* u : {&ub, &uc, &ud}) CHECK(model::test::same_bits(ua, *u));

@@ -1,0 +1,87 @@
+// SPDX-License-Identifier: MIT
+// FluidField's threads' lanes (model/fluid/field.*): begin_batch / update_part / end_batch, run here on one
+// thread lane after lane, against update() on the same particles. The World's slabs are contiguous index
+// ranges after its spatial sort; here each lane owns every third particle, the case where the surface sums
+// must really merge the lanes' lists into ascending order.
+#include "model/fluid/field.h"
+
+#include <doctest/doctest.h>
+
+#include <cstdint>
+#include <random>
+#include <vector>
+
+using namespace pastemix::model;
+using namespace pastemix::model::fluid;
+
+namespace {
+
+// 600 spheres of 2-4 mm over a 10 x 10 cm paste box (surface 5 cm), from below the bottom to 10 cm up.
+Particles falling_rock() {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  Particles p;
+  for (int k = 0; k < 600; ++k)
+    p.add(0, 0.002 + 0.002 * u(rng), 2700, {0.11 * u(rng) - 0.005, 0.11 * u(rng) - 0.005, 0.11 * u(rng) - 0.01}, {},
+          {});
+  return p;
+}
+
+FluidRegion paste() {
+  FluidRegion reg;
+  reg.x_min = reg.y_min = 0, reg.x_max = reg.y_max = 0.1, reg.z_bottom = 0, reg.z_surface0 = 0.05;
+  reg.law = BinghamDedegil::Params{1843, 20, 0.7};
+  reg.curve = {pastemix::drag::CurveId::published_4_19, {}};
+  return reg;
+}
+
+// Bitwise: every flag, volume and the kick of every particle under one force.
+void check_same(const FluidField& one, const FluidField& lanes, const Particles& p, double dt) {
+  CHECK(one.surface_z(0) == lanes.surface_z(0));
+  CHECK(one.members() == lanes.members());
+  const Vec3 g{0, 0, -9.81}, v{0.01, -0.02, -0.3}, f{0, 0, -1e-3};
+  int differ = 0;
+  for (std::size_t a = 0; a < p.size(); ++a) {
+    const long i = static_cast<long>(a);
+    differ += one.region_of(i) != lanes.region_of(i) || one.submerged_volume(i) != lanes.submerged_volume(i);
+    if (!one.inside(i)) continue;
+    const Vec3 k1 = one.kick(i, v, f, p.mass[a], p.radius[a], 0.5 * dt, g);
+    const Vec3 k2 = lanes.kick(i, v, f, p.mass[a], p.radius[a], 0.5 * dt, g);
+    differ += k1.x != k2.x || k1.y != k2.y || k1.z != k2.z;
+  }
+  CHECK(differ == 0);
+}
+
+}  // namespace
+
+TEST_CASE("fluid field: 3 lanes over interleaved particles give update()'s bits (members, volumes, surface, kicks)") {
+  Particles p = falling_rock();
+  const double dt = 2e-5;
+  FluidField one({paste()}), lanes({paste()});
+  for (FluidField* f : {&one, &lanes}) f->set_candidate_margin(1.25e-3), f->set_step(dt, {0, 0, -9.81});
+  std::vector<std::vector<std::uint32_t>> own(3);
+  long stamp = 0;
+  for (int batch = 0; batch < 40; ++batch) {
+    // A new partition every fourth batch (the lanes are made anew, the last members cleared by begin_batch).
+    if (batch % 4 == 0) {
+      ++stamp;
+      for (auto& list : own) list.clear();
+      for (std::uint32_t a = 0; a < p.size(); ++a) own[(a + static_cast<std::uint32_t>(batch)) % 3].push_back(a);
+    }
+    lanes.begin_batch(p, 3, stamp);
+    for (int s = 0; s < 25; ++s) {
+      for (std::size_t a = 0; a < p.size(); ++a) p.x[a].z -= 1e-5;  // the rock sinks 0.25 mm per batch
+      one.update(p);
+      for (int t = 2; t >= 0; --t) lanes.update_part(p, t, &own[static_cast<std::size_t>(t)]);  // any order
+    }
+    lanes.end_batch();
+    check_same(one, lanes, p, dt);
+    // A pair-list rebuild every other batch, before any sphere has moved half the margin: the candidates anew.
+    if (batch % 2 == 1) lanes.mark_stale(), one.mark_stale();
+  }
+  const double risen = one.surface_z(0) - 0.05;
+  INFO("members " << one.members().size() << ", candidates " << lanes.candidate_count() << ", rise " << risen);
+  CHECK(one.members().size() > 200);
+  CHECK(risen > 0.0);
+  CHECK(lanes.candidate_count() < p.size());
+}
