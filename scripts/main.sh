@@ -14,9 +14,13 @@ px=build/pastemix
 start=$(date +%s%N)
 stamp() { awk -v ns="$(($(date +%s%N) - start))" 'BEGIN { printf "%.1f", ns / 1e9 }'; }
 
-# 1. Lab data -> parameters (parameters.toml, lab.h5, PNGs) and the drag-curve fit.
+# 1. Lab data -> parameters (parameters.toml, lab.h5, PNGs) and the drag-curve fit. The unmeasured 70 / 72.5 %
+#    pastes come from the rheology model with its shape parameter calibrated on case 2 (issue 15, protocol
+#    docs/rheology_protocol.md; the record docs/studies/rheology_case2/, an "at-rest effective" rheology).
 mkdir -p "$out"
-$px lab reduce datasets/thesis --out "$out/lab" > "$out/lab_reduce.log" 2>&1 || { cat "$out/lab_reduce.log"; exit 1; }
+$px lab reduce datasets/thesis --out "$out/lab" \
+  --rheology-calibration docs/studies/rheology_case2/rheology_calibration.toml > "$out/lab_reduce.log" 2>&1 ||
+  { cat "$out/lab_reduce.log"; exit 1; }
 $px lab drag-fit datasets/thesis --out "$out/drag" > "$out/drag.log" 2>&1 || { cat "$out/drag.log"; exit 1; }
 t_lab=$(stamp)
 
