@@ -29,6 +29,15 @@ std::vector<double> flat(const std::vector<Vec3>& v) {
 
 std::string group(std::size_t k) { return fmt::format("/snapshots/{:06d}", k); }
 
+// One XDMF attribute of 8-byte values read from the HDF5 dataset `where` (FILE:/path).
+std::string xdmf_attribute(const char* name, const char* type, const char* center, const std::string& dims,
+                           const char* number_type, const std::string& where) {
+  return fmt::format("    <Attribute Name=\"{}\" AttributeType=\"{}\" Center=\"{}\">\n"
+                     "     <DataItem Dimensions=\"{}\" NumberType=\"{}\" Precision=\"8\" Format=\"HDF\">{}</DataItem>\n"
+                     "    </Attribute>\n",
+                     name, type, center, dims, number_type, where);
+}
+
 }  // namespace
 
 RunOutput::RunOutput(const std::filesystem::path& h5_path, std::string h5_final_name, const Scene& scene)
@@ -227,17 +236,13 @@ std::string RunOutput::finish(const World& w, double wall_seconds, int threads) 
     x += fmt::format("     <DataItem Dimensions=\"{} 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">{}:{}/position</DataItem>\n",
                      n, h5_name_, g);
     x += "    </Geometry>\n";
-    auto attr = [&](const char* name, const char* type, const char* ds, const std::string& dims, const char* num,
-                    int prec) {
-      x += fmt::format("    <Attribute Name=\"{}\" AttributeType=\"{}\" Center=\"Node\">\n", name, type);
-      x += fmt::format("     <DataItem Dimensions=\"{}\" NumberType=\"{}\" Precision=\"{}\" Format=\"HDF\">{}:{}/{}</DataItem>\n",
-                       dims, num, prec, h5_name_, g, ds);
-      x += "    </Attribute>\n";
+    auto attr = [&](const char* name, const char* type, const std::string& dims, const char* num) {
+      x += xdmf_attribute(name, type, "Node", dims, num, h5_name_ + ":" + g + "/" + name);
     };
-    attr("radius", "Scalar", "radius", fmt::format("{}", n), "Float", 8);
-    attr("id", "Scalar", "id", fmt::format("{}", n), "Int", 8);
-    attr("velocity", "Vector", "velocity", fmt::format("{} 3", n), "Float", 8);
-    if (rotation_) attr("angular_velocity", "Vector", "angular_velocity", fmt::format("{} 3", n), "Float", 8);
+    attr("radius", "Scalar", fmt::format("{}", n), "Float");
+    attr("id", "Scalar", fmt::format("{}", n), "Int");
+    attr("velocity", "Vector", fmt::format("{} 3", n), "Float");
+    if (rotation_) attr("angular_velocity", "Vector", fmt::format("{} 3", n), "Float");
     x += "   </Grid>\n";
   }
   x += "  </Grid>\n";
@@ -266,10 +271,7 @@ std::string RunOutput::flow_xdmf(const fluid::FlowFields& f) const {
                      "</DataItem>\n", f.h[2], f.h[1], f.h[0]);
     x += "    </Geometry>\n";
     auto attr = [&](const char* name, const char* type, const std::string& dims) {
-      x += fmt::format("    <Attribute Name=\"{}\" AttributeType=\"{}\" Center=\"Cell\">\n", name, type);
-      x += fmt::format("     <DataItem Dimensions=\"{}\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">{}:{}/{}</DataItem>\n",
-                       dims, h5_name_, g, name);
-      x += "    </Attribute>\n";
+      x += xdmf_attribute(name, type, "Cell", dims, "Float", h5_name_ + ":" + g + "/" + name);
     };
     attr("paste_fraction", "Scalar", cells);
     attr("fluid_fraction", "Scalar", cells);

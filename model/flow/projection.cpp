@@ -252,7 +252,6 @@ void PressureOperator::open_side_rhs(double dt, const Faces& rho_face, const Flu
 
 void PressureOperator::gradient_impulse(double dt, const std::vector<double>& p, Faces& out) const {
   const Grid& g = g_;
-  const std::vector<double>& open_p = open_p_;
   for (int c = 0; c < 3; ++c) out[c].assign(g.face_count(c), 0.0);
   for (std::size_t i = 0; i < links_.size(); ++i) {
     const Link& l = links_[i];
@@ -260,7 +259,7 @@ void PressureOperator::gradient_impulse(double dt, const std::vector<double>& p,
     const double k = dt / g.h[l.c];
     double& v = out[l.c][l.face];
     if (l.a >= 0 && l.b >= 0) v = k * (p[l.b] - p[l.a]);
-    else v = l.a >= 0 ? k * (open_p[i] - p[l.a]) * 2.0 : k * (p[l.b] - open_p[i]) * 2.0;
+    else v = l.a >= 0 ? k * (open_p_[i] - p[l.a]) * 2.0 : k * (p[l.b] - open_p_[i]) * 2.0;
   }
 }
 
