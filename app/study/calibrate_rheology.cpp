@@ -98,7 +98,9 @@ void run_tasks(std::vector<CalPoint>& pts, std::vector<SeedTask>& tasks, const R
   for (const SeedTask& t : tasks) {
     const SeedRun& sr = pts[t.point].runs[t.seed_index];
     where[sr.hash] = {t.point, t.seed_index};
-    list.push_back({sr.hash, fmt::format("shape {:.10g} seed {}", pts[t.point].shape, sr.seed),
+    // A sensitivity run (eta_B x F) names its factor: the ledger rows of x1 and x F differ only by their key.
+    const std::string eta = o.eta_factor == 1.0 ? "" : fmt::format(" eta x {:g}", o.eta_factor);
+    list.push_back({sr.hash, fmt::format("shape {:.10g}{} seed {}", pts[t.point].shape, eta, sr.seed),
                     [&t, &o, runs, hash = sr.hash](From& from) { return run_seed(t.doc, runs, hash, o, from); }});
   }
   StudyIo io = study_io(o, fmt::format("calibrate rheology case {}", o.case_id));
