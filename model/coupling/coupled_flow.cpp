@@ -86,6 +86,8 @@ CoupledFlow::Start CoupledFlow::drag_at_start(const CoupledParticles& p) const {
   s0.beta.assign(n, 0.0);
   s0.shift.assign(n, {0.0, 0.0, 0.0});
   s0.u = exchange_.fluid_velocity({p.x, p.d, p.m, none, none}, flow_.velocity(), mass0, &mask0, s0.share);
+  s0.x.assign(p.x.begin(), p.x.end());
+  s0.mask = mask0;
   const std::vector<double>& eps_now = flow_.fluid_fraction();
   for (std::size_t i = 0; i < n; ++i) {
     // A share below 0 is the round-off of a folded kernel's weights (~1e-18) on faces the mask leaves: none.
@@ -191,6 +193,7 @@ void CoupledFlow::flow_interval(CoupledParticles& p, double T, const Start& s0, 
   double f0 = 0.0;
   int j0 = 0;  // the sub-step index at the last split
   const ExchangeParticles view{p.x, p.d, p.m, s0.beta, none};
+  const ExchangeParticles at_start_view{s0.x, p.d, p.m, s0.beta, none};  // the drag's own weights (Start::x)
   std::vector<Vec> impulse, reference = s0.u;
   flow::Faces at_start, at_end;  // N s/m3: the pressure impulses, split by the positions their fluid mass had
   for (int c = 0; c < 3; ++c) at_start[c].assign(g.face_count(c), 0.0), at_end[c].assign(g.face_count(c), 0.0);
@@ -215,8 +218,8 @@ void CoupledFlow::flow_interval(CoupledParticles& p, double T, const Start& s0, 
     };
     auto react = [&](double, flow::Faces& u, const flow::Faces& mass) {
       if (j != 0) return;  // the sub-cycle's reaction once, in the first sub-step
-      const flow::Faces mask = flow::face_means(g, flow_.alpha()), before = u;
-      st.dropped_yield += exchange_.react(view, u, mass, &mask, sub).dropped_yield;
+      const flow::Faces before = u;
+      st.dropped_yield += exchange_.react(at_start_view, u, mass, &s0.mask, sub).dropped_yield;
       book(before, u, mass, sub);
     };
     auto correct = [&](double h, flow::Faces& u, const flow::Faces& mass) {

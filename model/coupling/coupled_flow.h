@@ -92,6 +92,12 @@ class CoupledFlow {
     std::vector<Vec> u;
     std::vector<double> share, beta;
     std::vector<Vec> shift;  // m/s, what the particle's own displaced fluid adds to u_p (removed: drag.h)
+    // Where the drag was computed: the positions (m) and the faces' paste fraction at the cycle's start. The
+    // sub-cycle's reaction goes back through these same weights (adjoint of u_p = W u), not through the end
+    // positions': a rock that left the paste during the sub-cycle would otherwise put its whole paste drag on
+    // the one near-air face its end support still reaches.
+    std::vector<Vec> x;
+    flow::Faces mask;
   };
   Start begin(const CoupledParticles& p) const { return drag_at_start(p); }
   // Particle i's velocity v (in/out) after a step dt under the force F (N: every force but the paste's drag,

@@ -68,7 +68,10 @@ std::array<std::vector<Exchange::Row>, 3> Exchange::rows(const ExchangeParticles
         while (e + 1 < acc[c].size() && acc[c][e + 1].first == f) w += acc[c][++e].second;
         if (wall_face(g_, c, f) || !(face_mass[c][f] > 0.0)) continue;
         unmasked += w;
-        if (paste_mask != nullptr) w *= std::clamp((*paste_mask)[c][f], 0.0, 1.0);
+        if (paste_mask != nullptr) {
+          const double a = std::clamp((*paste_mask)[c][f], 0.0, 1.0);
+          w *= a >= kMinPasteFraction ? a : 0.0;
+        }
         if (w == 0.0) continue;
         r.face.push_back(f);
         r.w.push_back(w);

@@ -8,8 +8,12 @@
 // (kernel.h: interpolate_velocity) restricted to the faces that may take a reaction, renormalised to sum 1:
 // not a wall face (its velocity is fixed), a positive fluid mass, and with a paste mask (the faces' paste
 // fraction) multiplying the weights, so that air faces are masked from the paste drag (an explicit reaction on a
-// near-empty face would kick it by many times its mass). A particle whose support holds no such face gets no
-// paste drag (its W row is 0). The reaction on the faces is W^T J: adjoint, so sum_f (W^T J)_f = J.
+// near-empty face would kick it by many times its mass). A face whose paste fraction is below
+// kMinPasteFraction counts as air (weight 0): its mass is then mostly the air's (1.2 kg/m3 against 1.8e3, i.e.
+// below ~1e-3 paste the face is lighter than its paste share says), and a dense stream entering the surface
+// put its paste drag on faces of paste fraction 1e-7..1e-4 and kicked them to 5-65 m/s at coupling interval 50
+// (VALIDATION.md "Dense stream"). A particle whose support holds no such face gets no paste drag (its W row
+// is 0). The reaction on the faces is W^T J: adjoint, so sum_f (W^T J)_f = J.
 //
 // 1. Yield part (bounded, static-friction-like), against the fluid velocity at the start u^n:
 //    w = v_p - u_p(u^n); J_y = -m w if m |w| <= F_y dt (the particle sticks to the paste: v_p = u_p(u^n)),
@@ -32,6 +36,10 @@
 #include "model/flow/grid.h"
 
 namespace pastemix::coupling {
+
+// A face's paste fraction below this is air for the paste drag (see Weights above): 1 %, where the face's
+// paste mass is still ~15 times its air mass.
+inline constexpr double kMinPasteFraction = 0.01;
 
 struct ExchangeParticles {
   std::span<const std::array<double, 3>> centre;  // m

@@ -216,6 +216,7 @@ void FlowCoupling::renumber(const std::vector<std::uint32_t>& map, std::size_t c
   remap(cp.drag, map, count);
   auto& st = s_->start;
   remap(st.u, map, count), remap(st.share, map, count), remap(st.beta, map, count), remap(st.shift, map, count);
+  remap(st.x, map, count);
   remap(s_->impulse, map, count), remap(member_, map, count);
   coupling::CoupledFlow::State c = s_->coupled.state();
   remap(c.x_flow, map, count), remap(c.pending, map, count), remap(c.drag, map, count);
@@ -245,6 +246,7 @@ void pack_state(IO& io, S& st, C& coupled, std::vector<char>& member, std::vecto
   };
   io(member), io(list), io(step), io(cycles);
   io(st.p.x), io(st.p.v), io(st.start.u), io(st.start.share), io(st.start.beta), io(st.start.shift), io(st.impulse);
+  io(st.start.x), faces(st.start.mask);
   io(st.last), io(coupled.x_flow), io(coupled.pending), io(coupled.drag), io(coupled.interval);
   auto& f = st.flow;
   faces(f.u), faces(f.continuity_impulse), faces(f.pressure_impulse);

@@ -207,3 +207,37 @@ TEST_CASE("exchange: wall faces and masked (air) faces take no reaction, a parti
     CHECK(J[1][c] == 0.0);                      // no paste face in its support
   }
 }
+
+// Faces below kMinPasteFraction are air for the paste drag: a particle whose whole support holds paste fraction
+// 0.5 % has no paste share and passes no reaction; at 2 % it has a 2 % share and its reaction stays on the faces.
+TEST_CASE("exchange: faces of paste fraction below 1 % are air for the paste drag (no share, no reaction)") {
+  const flow::Grid g = periodic_box();
+  const flow::Faces M = faces(g, 1.2 * g.cell_volume() + 0.01 * 1843.0 * g.cell_volume());
+  for (const double a : {0.005, 0.02}) {
+    CAPTURE(a);
+    const flow::Faces mask = faces(g, a);
+    Cloud p;
+    p.x = {{0.033, 0.027, 0.051}};
+    p.d = {0.005};
+    p.m = {1.8e-4};
+    p.beta = {1.0};
+    p.yield = {0.0};
+    p.v = {{0.0, 0.0, -1.0}};
+    std::vector<double> share;
+    const Exchange ex(g, 2.0);
+    ex.fluid_velocity(p.view(), faces(g, 0.0), M, &mask, share);
+    CHECK(share[0] == doctest::Approx(a < coupling::kMinPasteFraction ? 0.0 : a).epsilon(1e-12));
+    flow::Faces u = faces(g, 0.0);
+    const std::vector<std::array<double, 3>> J = {{0.0, 0.0, 1e-5}};
+    const coupling::ExchangeStats st = ex.react(p.view(), u, M, &mask, J);
+    double fluid = 0.0;
+    for (std::size_t f = 0; f < u[2].size(); ++f) fluid += M[2][f] * u[2][f];
+    if (a < coupling::kMinPasteFraction) {
+      CHECK(fluid == 0.0);
+      CHECK(st.dropped_yield == doctest::Approx(1e-5));
+    } else {
+      CHECK(fluid == doctest::Approx(-1e-5).epsilon(1e-12));
+      CHECK(st.dropped_yield == 0.0);
+    }
+  }
+}
