@@ -11,6 +11,8 @@
 // (app/fluid_paste.h: values from the lab parameter store, overridable).
 #include <cmath>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -21,6 +23,7 @@
 #include "lab/drag/settling.h"
 #include "lab/drag/terminal_velocity.h"
 #include "model/fluid/fluid_scene.h"
+#include "validation/fluid/steel_ball_flow.h"
 #include "validation/fluid/validations.h"
 #include "base/units.h"
 
@@ -138,7 +141,37 @@ struct BallOpts {
   double dt = 2e-5, offset = 0.0;
   bool no_wall = false;
   PasteOpts paste;
+  std::vector<double> flow_cells;  // m; empty: the at-rest table only
+  validation::FlowBallSettings flow;
 };
+
+// The same grid with dynamics = "flow" (validation/fluid/steel_ball_flow.h) at one cell size: distance (mm),
+// * = reached the floor, ~ = still moving at the end (its speed follows); then each run's cost.
+void print_flow_ball_table(const SteelBallPaste& p, double eta, double cell, const validation::FlowBallSettings& base) {
+  validation::FlowBallSettings f = base;
+  f.cell = cell;
+  const std::vector<double> heights{0.0, 0.105, 0.150, 0.255};
+  std::string cost;
+  double used = 0.0;
+  fmt::print("{:>10}", "ball (mm)");
+  for (double h : heights) fmt::print(" {:>9}", fmt::format("H={:.0f}", 1e3 * h));
+  fmt::print("   cell / d\n");
+  for (double d : {0.008, 0.0126, 0.016}) {
+    fmt::print("{:>10.1f}", 1e3 * d);
+    for (double h : heights) {
+      const validation::FlowBallDrop b = validation::steel_ball_drop_flow(p, d, h, eta, f);
+      used = b.cell;
+      fmt::print(" {:>9}", fmt::format("{:.2f}{}", 1e3 * b.drop.distance,
+                                       b.drop.reached_bottom ? "*" : (b.at_rest ? "" : "~")));
+      cost += fmt::format("  {:.1f} mm from {:.0f} mm: {:.2f} s to rest, end speed {:.3g} mm/s, {} flow intervals, "
+                          "{:.1f} s wall{}\n",
+                          1e3 * d, 1e3 * h, b.drop.time_to_rest, 1e3 * b.speed_end, b.cycles, b.seconds,
+                          b.at_rest || b.drop.reached_bottom ? "" : " (NOT at rest)");
+    }
+    fmt::print("   {:.3g}\n", used / d);
+  }
+  fmt::print("(cell {:.4g} mm; * = reached the floor, ~ = still moving at the end)\n{}", 1e3 * used, cost);
+}
 
 // The Table 4.4 grid: settling distance (mm) per ball diameter and falling height; * = reached the bottom.
 void print_ball_table(const SteelBallPaste& p, double eta) {
@@ -163,6 +196,12 @@ void register_steel_balls(CLI::App* val) {
   balls->add_option("--dt", bo->dt, "time step (s), default 2e-5");
   balls->add_flag("--no-wall", bo->no_wall, "leave out the mould's side wall (cylinder 75 mm)");
   balls->add_option("--offset", bo->offset, "release point's distance from the mould axis (mm), default 0");
+  balls->add_option("--flow", bo->flow_cells, "also with dynamics = \"flow\" at these cell sizes (m; repeat)")
+      ->check(CLI::PositiveNumber);
+  balls->add_option("--interval", bo->flow.coupling_interval, "with --flow: DEM steps per flow interval (default 50)")
+      ->check(CLI::PositiveNumber);
+  balls->add_option("--regularisation", bo->flow.regularisation, "with --flow: Papanastasiou's m, s (default 1000)")
+      ->check(CLI::PositiveNumber);
   balls->callback([bo] {
     const Paste paste = resolve_paste(bo->paste);
     SteelBallPaste p = steel_ball_paste(paste);
@@ -175,6 +214,12 @@ void register_steel_balls(CLI::App* val) {
                p.rho_ball, 1e3 * p.mould_diameter, 1e3 * p.mould_height,
                p.mould_wall ? " with its side wall" : " WITHOUT side wall", bo->offset, p.dt);
     print_ball_table(p, paste.eta);
+    for (double cell : bo->flow_cells) {
+      fmt::print("\nwith dynamics = \"flow\" (coupling interval {}, regularisation m = {:g} s, rest: |v| < {:g} mm/s for "
+                 "{:g} s):\n",
+                 bo->flow.coupling_interval, bo->flow.regularisation, 1e3 * bo->flow.rest_speed, bo->flow.rest_time);
+      print_flow_ball_table(p, paste.eta, cell, bo->flow);
+    }
   });
 }
 
