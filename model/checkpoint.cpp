@@ -50,7 +50,7 @@ struct CheckpointAccess {
     io(w.rebuilds_since_sort_);
     particles(io, w.p_);
     auto& q = w.pairs_;
-    io(q.width), io(q.i), io(q.j), io(q.r_star), io(q.m_star), io(q.law_index), io(q.history), io(q.touching);
+    io(q.width), io(q.i), io(q.j), io(q.r_star), io(q.m_star), io(q.rsum), io(q.law_index), io(q.history), io(q.touching);
     io(q.start), io(q.entry);
     auto& c = w.wall_contacts_;
     io(c.width), io(c.walls), io(c.start), io(c.near), io(c.history), io(c.touching);

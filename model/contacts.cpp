@@ -108,7 +108,7 @@ void pair_chunk(const std::vector<typename Law::Params>& table, const std::vecto
     // kicking and drifting the original).
     const bool cross_pair = Part && L.cross[k] != PairList::kNone;
     const Vec3 d = cross_pair ? L.state(b, cur).x - L.state(a, cur).x : p.x[b] - p.x[a];
-    const double rsum = p.radius[a] + p.radius[b];
+    const double rsum = L.rsum[k];
     const double dist2 = norm2(d);
     const bool touch = !(dist2 >= rsum * rsum);
     idx[m] = k;
@@ -338,6 +338,7 @@ void PairList::rebuild(CandidatePairs& c, const Particles& p, int n_materials, i
   new_touch.assign(n, 0);
   r_star.resize(n);
   m_star.resize(n);
+  rsum.resize(n);
   law_index.resize(n);
   // History carry-over: a new pair (a, b) looks for (a, b) among the old pairs of a (its old CSR row, a
   // few entries). Only touching pairs carry a spring (a pair stops touching -> its history is zeroed).
@@ -351,6 +352,7 @@ void PairList::rebuild(CandidatePairs& c, const Particles& p, int n_materials, i
     const std::uint32_t a = c.i[k], b = c.j[k];
     r_star[k] = p.radius[a] * p.radius[b] / (p.radius[a] + p.radius[b]);
     m_star[k] = p.mass[a] * p.mass[b] / (p.mass[a] + p.mass[b]);
+    rsum[k] = p.radius[a] + p.radius[b];
     law_index[k] = static_cast<std::uint32_t>(p.material[a] * n_materials + p.material[b]);
     if (!carry) continue;
     for (std::uint32_t e = start[a]; e < start[a + 1]; ++e) {
@@ -400,6 +402,7 @@ void PairList::rename(const std::vector<std::uint32_t>& map, std::size_t np) {
     j[out] = b;
     r_star[out] = r_star[k];
     m_star[out] = m_star[k];
+    rsum[out] = rsum[k];
     law_index[out] = law_index[k];
     touching[out] = touching[k];
     double* h = history.data() + out * ws;
@@ -412,6 +415,7 @@ void PairList::rename(const std::vector<std::uint32_t>& map, std::size_t np) {
   j.resize(out);
   r_star.resize(out);
   m_star.resize(out);
+  rsum.resize(out);
   law_index.resize(out);
   touching.resize(out);
   history.resize(out * ws);

@@ -111,7 +111,7 @@ TEST_CASE("spatial sort: a pair whose ends swap keeps (lower, higher) and its sp
   L.width = 6;
   L.i = {0, 1};
   L.j = {2, 2};
-  L.r_star = {1, 2}, L.m_star = {3, 4}, L.law_index = {0, 0}, L.touching = {1, 0};
+  L.r_star = {1, 2}, L.m_star = {3, 4}, L.rsum = {5, 6}, L.law_index = {0, 0}, L.touching = {1, 0};
   L.history = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12};
   L.rename({2, 0, 1}, 3);  // 0 -> 2, 1 -> 0, 2 -> 1: pair (0, 2) becomes (2, 1) -> (1, 2), pair (1, 2) -> (0, 1)
   CHECK(L.i == std::vector<std::uint32_t>{1, 0});
@@ -119,6 +119,7 @@ TEST_CASE("spatial sort: a pair whose ends swap keeps (lower, higher) and its sp
   CHECK(L.history == std::vector<double>{-1, -2, -3, -4, -5, -6, 7, 8, 9, 10, 11, 12});
   CHECK(L.touching == std::vector<std::uint32_t>{1, 0});
   CHECK(L.r_star == std::vector<double>{1, 2});
+  CHECK(L.rsum == std::vector<double>{5, 6});
   // The CSR by first particle the carry-over reads: particle 0 has pair 1, particle 1 pair 0.
   CHECK(L.start == std::vector<std::uint32_t>{0, 1, 2, 2});
   CHECK(L.entry == std::vector<std::uint32_t>{1, 0});
