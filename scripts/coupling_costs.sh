@@ -14,7 +14,7 @@ one() {  # label, then the command's arguments
   printf '%-34s | %7.1f s | rc %d | pastemix %s\n' "$label" "$(echo "$t1 - $t0" | bc)" "$rc" "$*"
   printf '%s\n' "$out" | grep -vE '^\s*$' | tail -${TAIL:-2} | sed 's/^/    /'
 }
-echo "# coupling costs, $(date -u +%FT%TZ), $("$px" --version 2>/dev/null | head -1), load $(cut -d' ' -f1-3 /proc/loadavg)"
+echo "# coupling costs, $(date -u +%FT%TZ), $px at git $(git rev-parse --short HEAD 2>/dev/null), load $(cut -d' ' -f1-3 /proc/loadavg)"
 one "sphere Newtonian h/d 1" validate coupling sphere --cell-over-d 1 --box-over-d 8
 one "sphere Newtonian h/d 0.5" validate coupling sphere --cell-over-d 0.5 --box-over-d 8
 one "sphere Newtonian h/d 2 (L/d 24)" validate coupling sphere --cell-over-d 2 --box-over-d 24
@@ -29,7 +29,7 @@ for k in 1 10 100; do
 done
 one "dense stream scene (interval 50)" run datasets/scenes/flow_stream_small.toml --threads 1 --quiet --out /tmp/coupling_costs_fss
 TAIL=6 one "steel balls flow 13.3 mm cells" validate steel-balls --curve published_4_19 --flow 0.0133
-if "$px" validate coupling raft --help > /dev/null 2>&1; then
+if "$px" validate coupling --help 2>&1 | grep -qE '^ +raft '; then
   one "raft q = 3 (holds)" validate coupling raft --load 3
   one "raft q = 12 (punches in)" validate coupling raft --load 12
 fi
