@@ -71,27 +71,35 @@ void print_raft(const model::fluid::RaftSettings& s, const model::fluid::RaftRes
              r.punched ? "punched" : "held", r.cycles, r.flow_steps, r.seconds);
 }
 
-model::fluid::RaftResult raft_at(model::fluid::RaftSettings s, double q) {
+// 1: punched, 0: held, -1: the run failed (the flow's RuntimeFailure, printed: neither).
+int raft_at(model::fluid::RaftSettings s, double q) {
   s.load = q;
-  const model::fluid::RaftResult r = model::fluid::run_raft(s);
-  print_raft(s, r);
-  return r;
+  try {
+    const model::fluid::RaftResult r = model::fluid::run_raft(s);
+    print_raft(s, r);
+    return r.punched ? 1 : 0;
+  } catch (const RuntimeFailure& e) {
+    fmt::print("raft q {:6.3f} tau_y: the run failed: {}\n", q, e.what());
+    return -1;
+  }
 }
 
 // q = 3 .. 12 tau_y, then `bisect` halvings between the highest holding load below the first punching one and
 // that one: the load at which the raft goes.
 void raft_sweep(const model::fluid::RaftSettings& s, int bisect) {
-  double held = 0.0, punched = 0.0;
+  double held = 0.0, punched = 0.0;  // a failed run (-1) counts as neither
   for (int q = 3; q <= 12; ++q) {
-    const bool p = raft_at(s, q).punched;
-    if (p && punched == 0.0) punched = q;
-    if (!p && punched == 0.0) held = q;
+    const int p = raft_at(s, q);
+    if (p == 1 && punched == 0.0) punched = q;
+    if (p == 0 && punched == 0.0) held = q;
   }
-  if (punched == 0.0) return fmt::print("raft: holds at every load up to 12 tau_y A\n");
-  if (held == 0.0) return fmt::print("raft: goes at every load from 3 tau_y A\n");
+  if (punched == 0.0) return fmt::print("raft: no run up to 12 tau_y A punched\n");
+  if (held == 0.0) return fmt::print("raft: no run below {:g} tau_y A held\n", punched);
   for (int k = 0; k < bisect; ++k) {
     const double q = 0.5 * (held + punched);
-    (raft_at(s, q).punched ? punched : held) = q;
+    const int p = raft_at(s, q);
+    if (p < 0) break;
+    (p == 1 ? punched : held) = q;
   }
   fmt::print("raft: goes between {:.3f} (holds) and {:.3f} tau_y A (punched): {:.2f} tau_y A; Skempton 5 .. 9\n",
              held, punched, 0.5 * (held + punched));
@@ -118,7 +126,7 @@ void register_raft(CLI::App* cpl) {
   raft->callback([rs, sweep, bisect] {
     try {
       if (*sweep) return raft_sweep(*rs, *bisect);
-      raft_at(*rs, rs->load);
+      print_raft(*rs, model::fluid::run_raft(*rs));  // a RuntimeFailure is the command's failure
     } catch (const std::invalid_argument& e) {
       throw InputError("--load", 0, "", e.what());
     }

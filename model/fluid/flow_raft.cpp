@@ -66,10 +66,11 @@ std::string raft_scene(const RaftSettings& s, double density) {
 // interval). Every mode of the paste under the raft that the reset holds then grows by overshoot:
 //  - all three components reset (the draft, which also zeroed the horizontal velocities): a swirl of the paste
 //    about the raft's axis (a mode whose mean velocity is zero) grew from 1e-8 m/s at 0.05 s to 14 mm/s at
-//    0.4 s (5 mm cells, q = 3), and took the yield part's strength with it: the raft slid through the paste at
-//    7 mm/s at 1 s;
+//    0.4 s (5 mm cells, q = 3, the raft on the surface as the draft set it), and took the yield part's
+//    strength with it (the part is bounded in |v - W u|): the raft slid through the paste at 7 mm/s at 1 s;
 //  - the vertical component only: a tilt of the paste's vertical velocity under the raft changed sign every
-//    cycle and grew fourfold per cycle from 0.06 s (1 cm cells, seated, q = 7) to +-18 mm/s.
+//    cycle and grew fourfold per cycle from 0.06 s to +-18 mm/s (1 cm cells, seated, q = 7): the raft slid
+//    7.2 mm through the paste where it holds at 0.93 mm (the last test of tests/model/fluid/flow_raft_test.cpp).
 // With the positions alone the velocities stay the engine's (each sphere's momentum exchange with the paste is
 // exact) and both modes stay at round-off (swirl below 1e-6 m/s); the raft's mean velocity is still its rate of
 // settlement.
