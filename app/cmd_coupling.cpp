@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
-// `pastemix validate coupling sphere | piston | hindered`: the coupling's cases (model/coupling, issue 18) with their
+// `pastemix validate coupling sphere | piston | hindered | bed | stream | piston-dem | raft`: the coupling's cases (model/coupling, issue 18) with their
 // references; the figures of model/coupling/VALIDATION.md. One thread (the cases are serial).
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 #include <string>
 
@@ -14,6 +15,7 @@
 #include "model/coupling/piston.h"
 #include "model/coupling/sphere.h"
 #include "model/fluid/flow_piston.h"
+#include "model/fluid/flow_raft.h"
 #include "model/fluid/flow_stability.h"
 
 namespace pastemix::app {
@@ -56,6 +58,79 @@ SphereResult sphere_or_input_error(const SphereSettings& s) {
                      fmt::format("--cell-over-d {:g} / --box-over-d {:g}: {}", s.cell_over_diameter,
                                  s.box_over_diameter, e.what()));
   }
+}
+
+void print_raft(const model::fluid::RaftSettings& s, const model::fluid::RaftResult& r) {
+  for (const auto& t : r.trace)
+    fmt::print("  t {:.3f} s: penetration {:.3f} mm, speed {:.3f} mm/s, paste max {:.3f} mm/s, share {:.3f}, slip "
+               "{:.3f} mm/s, swirl {:.3g} mm/s\n",
+               t.time, 1e3 * t.penetration, 1e3 * t.speed, 1e3 * t.paste_speed, t.share, 1e3 * t.slip, 1e3 * t.swirl);
+  fmt::print("raft q {:6.3f} tau_y: penetration {:7.3f} mm (slid {:6.3f}), net q - gamma D {:6.3f} tau_y, end speed "
+             "{:7.4f} mm/s, max {:7.3f} mm/s, {:7}, {} cycles, {} flow steps, {:.1f} s\n",
+             s.load, 1e3 * r.penetration, 1e3 * r.slid, r.net_load, 1e3 * r.speed_end, 1e3 * r.max_speed,
+             r.punched ? "punched" : "held", r.cycles, r.flow_steps, r.seconds);
+}
+
+// 1: punched, 0: held, -1: the run failed (the flow's RuntimeFailure, printed: neither).
+int raft_at(model::fluid::RaftSettings s, double q) {
+  s.load = q;
+  try {
+    const model::fluid::RaftResult r = model::fluid::run_raft(s);
+    print_raft(s, r);
+    return r.punched ? 1 : 0;
+  } catch (const RuntimeFailure& e) {
+    fmt::print("raft q {:6.3f} tau_y: the run failed: {}\n", q, e.what());
+    return -1;
+  }
+}
+
+// q = 3 .. 12 tau_y, then `bisect` halvings between the highest holding load below the first punching one and
+// that one: the load at which the raft goes.
+void raft_sweep(const model::fluid::RaftSettings& s, int bisect) {
+  double held = 0.0, punched = 0.0;  // a failed run (-1) counts as neither
+  for (int q = 3; q <= 12; ++q) {
+    const int p = raft_at(s, q);
+    if (p == 1 && punched == 0.0) punched = q;
+    if (p == 0 && punched == 0.0) held = q;
+  }
+  if (punched == 0.0) return fmt::print("raft: no run up to 12 tau_y A punched\n");
+  if (held == 0.0) return fmt::print("raft: no run below {:g} tau_y A held\n", punched);
+  for (int k = 0; k < bisect; ++k) {
+    const double q = 0.5 * (held + punched);
+    const int p = raft_at(s, q);
+    if (p < 0) break;
+    (p == 1 ? punched : held) = q;
+  }
+  fmt::print("raft: goes between {:.3f} (holds) and {:.3f} tau_y A (punched): {:.2f} tau_y A; Skempton 5 .. 9\n",
+             held, punched, 0.5 * (held + punched));
+}
+
+void register_raft(CLI::App* cpl) {
+  CLI::App* raft = cpl->add_subcommand("raft", "a 5 cm raft of touching spheres loaded on the Bingham paste "
+                                               "(through the engine): holds, or goes (Skempton's 5-9 tau_y)");
+  auto rs = std::make_shared<model::fluid::RaftSettings>();
+  auto sweep = std::make_shared<bool>(false);
+  auto bisect = std::make_shared<int>(3);
+  raft->add_option("--load", rs->load, "q / tau_y, the raft's weight over tau_y A (default 3)")->check(CLI::PositiveNumber);
+  raft->add_flag("--sweep", *sweep, "q = 3, 4, .. 12, then bisect where it goes");
+  raft->add_option("--bisect", *bisect, "halvings after the sweep (default 3)")->check(CLI::NonNegativeNumber);
+  raft->add_option("--cell", rs->cell, "cubic cell, m (default 0.005)")->check(CLI::PositiveNumber);
+  raft->add_option("--box", rs->box, "the paste box's side, m (default 0.1)")->check(CLI::PositiveNumber);
+  raft->add_option("--m", rs->regularisation, "Papanastasiou's m, s (default 1000)")->check(CLI::PositiveNumber);
+  raft->add_option("--tau-y", rs->yield_stress, "the paste's yield stress, Pa (default 46)")->check(CLI::PositiveNumber);
+  raft->add_option("--paste-density", rs->paste_density, "kg/m3 (default 1789.4)")->check(CLI::PositiveNumber);
+  raft->add_option("--time", rs->time, "simulated time, s (default 1)")->check(CLI::PositiveNumber);
+  raft->add_option("--dt", rs->time_step, "DEM step, s (default 1e-4)")->check(CLI::PositiveNumber);
+  raft->add_option("--interval", rs->coupling_interval, "DEM steps per flow interval (default 50)")->check(CLI::PositiveNumber);
+  raft->add_option("--trace", rs->trace_every, "s between trace lines (default none)")->check(CLI::PositiveNumber);
+  raft->callback([rs, sweep, bisect] {
+    try {
+      if (*sweep) return raft_sweep(*rs, *bisect);
+      print_raft(*rs, model::fluid::run_raft(*rs));  // a RuntimeFailure is the command's failure
+    } catch (const std::invalid_argument& e) {
+      throw InputError("--load", 0, "", e.what());
+    }
+  });
 }
 
 }  // namespace
@@ -179,6 +254,8 @@ void register_coupling_commands(CLI::App& app) {
                r.relative_error, r.volume_error, 1e3 * r.surface_spread, r.max_speed_end, r.steps, r.cycles,
                r.flow_steps, r.seconds);
   });
+
+  register_raft(cpl);
 }
 
 }  // namespace pastemix::app
