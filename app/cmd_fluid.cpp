@@ -145,20 +145,26 @@ struct BallOpts {
   validation::FlowBallSettings flow;
 };
 
+// The Table 4.4 grid (m): ball diameters and falling heights, and its header row.
+const std::vector<double> kBallDiameters{0.008, 0.0126, 0.016}, kBallHeights{0.0, 0.105, 0.150, 0.255};
+
+void print_ball_header() {
+  fmt::print("{:>10}", "ball (mm)");
+  for (double h : kBallHeights) fmt::print(" {:>9}", fmt::format("H={:.0f}", 1e3 * h));
+}
+
 // The same grid with dynamics = "flow" (validation/fluid/steel_ball_flow.h) at one cell size: distance (mm),
 // * = reached the floor, ~ = still moving at the end (its speed follows); then each run's cost.
 void print_flow_ball_table(const SteelBallPaste& p, double eta, double cell, const validation::FlowBallSettings& base) {
   validation::FlowBallSettings f = base;
   f.cell = cell;
-  const std::vector<double> heights{0.0, 0.105, 0.150, 0.255};
   std::string cost;
   double used = 0.0;
-  fmt::print("{:>10}", "ball (mm)");
-  for (double h : heights) fmt::print(" {:>9}", fmt::format("H={:.0f}", 1e3 * h));
+  print_ball_header();
   fmt::print("   cell / d\n");
-  for (double d : {0.008, 0.0126, 0.016}) {
+  for (double d : kBallDiameters) {
     fmt::print("{:>10.1f}", 1e3 * d);
-    for (double h : heights) {
+    for (double h : kBallHeights) {
       const validation::FlowBallDrop b = validation::steel_ball_drop_flow(p, d, h, eta, f);
       used = b.cell;
       fmt::print(" {:>9}", fmt::format("{:.2f}{}", 1e3 * b.drop.distance,
@@ -175,13 +181,11 @@ void print_flow_ball_table(const SteelBallPaste& p, double eta, double cell, con
 
 // The Table 4.4 grid: settling distance (mm) per ball diameter and falling height; * = reached the bottom.
 void print_ball_table(const SteelBallPaste& p, double eta) {
-  const std::vector<double> heights{0.0, 0.105, 0.150, 0.255};
-  fmt::print("{:>10}", "ball (mm)");
-  for (double h : heights) fmt::print(" {:>9}", fmt::format("H={:.0f}", 1e3 * h));
+  print_ball_header();
   fmt::print("\n");
-  for (double d : {0.008, 0.0126, 0.016}) {
+  for (double d : kBallDiameters) {
     fmt::print("{:>10.1f}", 1e3 * d);
-    for (double h : heights) {
+    for (double h : kBallHeights) {
       const BallDrop b = steel_ball_drop(p, d, h, eta);
       fmt::print(" {:>9}", fmt::format("{:.2f}{}", 1e3 * b.distance, b.reached_bottom ? "*" : ""));
     }

@@ -81,13 +81,14 @@ CoupledFlow::Start CoupledFlow::drag_at_start(const CoupledParticles& p) const {
   const std::vector<double> none(n, 0.0);
   // The fluid as it is now (weights at the cycle's start): u_p, the paste share, and the drag coefficients at
   // the slip v - W u^n and the fluid fraction the others leave (drag.h), frozen over the sub-cycle.
-  const flow::Faces mass0 = flow_.fluid_mass(), mask0 = flow::face_means(g, flow_.alpha());
+  const flow::Faces mass0 = flow_.fluid_mass();
   Start s0;
+  s0.mask = flow::face_means(g, flow_.alpha());
+  const flow::Faces& mask0 = s0.mask;
   s0.beta.assign(n, 0.0);
   s0.shift.assign(n, {0.0, 0.0, 0.0});
   s0.u = exchange_.fluid_velocity({p.x, p.d, p.m, none, none}, flow_.velocity(), mass0, &mask0, s0.share);
   s0.x.assign(p.x.begin(), p.x.end());
-  s0.mask = mask0;
   const std::vector<double>& eps_now = flow_.fluid_fraction();
   for (std::size_t i = 0; i < n; ++i) {
     // A share below 0 is the round-off of a folded kernel's weights (~1e-18) on faces the mask leaves: none.

@@ -37,11 +37,7 @@ FlowBallDrop steel_ball_drop_flow(const SteelBallPaste& p, double d, double heig
   const double n = std::max(1.0, std::round(side / f.cell));
   FlowBallDrop out;
   out.cell = side / n;
-  SphereRun r;
-  r.d = d, r.rho_p = p.rho_ball, r.rho_f = p.rho_paste, r.tau_y = p.tau_y, r.eta = eta_B, r.curve = p.curve;
-  r.depth = p.mould_height, r.box_half = 0.5 * side, r.drop = height, r.dt = p.dt, r.floor = true;
-  r.mould_radius = p.mould_wall ? 0.5 * p.mould_diameter : 0.0;
-  r.x0 = p.offset;
+  const SphereRun r = steel_ball_run(p, d, height, eta_B);  // its box: the square of side above
   const double t_fall = std::sqrt(2.0 * std::max(height, 0.0) / kG);  // s
   const double end = t_fall + f.settle;
   const Scene scene = parse_scene(flow_ball_scene(r, end, out.cell, f), "steel_ball_flow.toml");

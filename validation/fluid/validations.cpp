@@ -77,7 +77,7 @@ SuspensionResult suspension(SphereRun r, double end_time) {
   return s;
 }
 
-BallDrop steel_ball_drop(const SteelBallPaste& p, double d, double height, double eta_B) {
+SphereRun steel_ball_run(const SteelBallPaste& p, double d, double height, double eta_B) {
   SphereRun r;
   r.d = d, r.rho_p = p.rho_ball, r.rho_f = p.rho_paste, r.tau_y = p.tau_y, r.eta = eta_B, r.curve = p.curve;
   r.depth = p.mould_height;
@@ -86,6 +86,11 @@ BallDrop steel_ball_drop(const SteelBallPaste& p, double d, double height, doubl
   r.drop = height, r.dt = p.dt, r.floor = true;
   r.mould_radius = p.mould_wall ? 0.5 * p.mould_diameter : 0.0;
   r.x0 = p.offset;
+  return r;
+}
+
+BallDrop steel_ball_drop(const SteelBallPaste& p, double d, double height, double eta_B) {
+  const SphereRun r = steel_ball_run(p, d, height, eta_B);
   const double t_fall = std::sqrt(2.0 * std::max(height, 0.0) / kG);
   const SphereTrace tr = run_single_sphere(r, t_fall + 5.0, 50);
   BallDrop b;

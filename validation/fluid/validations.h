@@ -57,7 +57,10 @@ struct BallDrop {
   double time_to_rest = 0.0; // s after release
   bool reached_bottom = false;
 };
-// A ball of diameter d (m) released at rest with its bottom `height` (m) above the paste surface.
+// The single-sphere run of a ball of diameter d (m) released at rest with its bottom `height` (m) above the
+// paste surface, in the mould (the fluid box of the mould's area).
+SphereRun steel_ball_run(const SteelBallPaste& paste, double d, double height, double eta_B);
+// That ball's settling distance at rest.
 BallDrop steel_ball_drop(const SteelBallPaste& paste, double d, double height, double eta_B);
 
 // Plastic viscosity (Pa.s) that gives the settling distance `distance` (m) for the ball and height, by
