@@ -8,6 +8,7 @@
 
 #include "base/h5.h"
 #include "base/hash.h"
+#include "model/flow/solver.h"
 #include "model/fluid/flow_coupling.h"
 #include "model/scene.h"
 
@@ -209,6 +210,11 @@ std::string RunOutput::finish(const World& w, double wall_seconds, int threads) 
     h5_->write("/flow/timeseries/paste_volume", paste_volume_);
     h5_->attribute("/flow", "cycles", static_cast<std::int64_t>(c->cycles()));
     h5_->attribute("/flow", "flow_steps", static_cast<std::int64_t>(c->flow_steps()));
+    // The flow's cost, for a user sizing a run: its linear solves' iterations and its wall time (s).
+    const auto& cost = c->solver().totals();
+    h5_->attribute("/flow", "pressure_iterations", static_cast<std::int64_t>(cost.pressure_iterations));
+    h5_->attribute("/flow", "viscous_iterations", static_cast<std::int64_t>(cost.viscous_iterations));
+    h5_->attribute("/flow", "solver_seconds", cost.seconds);
   }
   const Profile& prof = w.profile();
   std::vector<std::string> names(Profile::names.begin(), Profile::names.end());

@@ -12,7 +12,7 @@
 //                             fluid_region_count; /timeseries/fluid_surface_z (samples x regions, m)
 //   flow (only with [[fluid]] dynamics = "flow", model/fluid/flow_coupling.h): /flow attributes dynamics,
 //                             cell_m, top_m, kernel_width, coupling_interval, regularisation_s, nx, ny, nz
-//                             (cells), hx, hy, hz, origin_x, origin_y, origin_z (m), cycles, flow_steps;
+//                             (cells), hx, hy, hz, origin_x, origin_y, origin_z (m), cycles, flow_steps, pressure_iterations, viscous_iterations, solver_seconds (s);
 //                             /flow/snapshots/NNNNNN/ (attribute time_s: the flow's own time, the last
 //                             coupling cycle's end) with the particle snapshot of the same number, arrays
 //                             [k][j][i] (z slowest): paste_fraction, fluid_fraction (-), pressure (Pa),

@@ -104,6 +104,10 @@ TEST_CASE("flow output: the shipped flow_drop scene runs and writes the grid, ea
   CHECK(h.attribute_int("/flow", "nz") == 12);
   CHECK(h.attribute_int("/flow", "coupling_interval") == 50);
   CHECK(h.attribute_int("/flow", "cycles") == 200);
+  // The flow's cost: every cycle solved the pressure (the rocks move the fluid), and it took time.
+  CHECK(h.attribute_int("/flow", "pressure_iterations") >= 200);
+  CHECK(h.attribute_int("/flow", "viscous_iterations") >= 0);
+  CHECK(h.attribute_double("/flow", "solver_seconds") > 0.0);
   const std::vector<double> alpha0 = h.read_doubles("/flow/snapshots/000000/paste_fraction");
   REQUIRE(alpha0.size() == 6 * 6 * 12);
   // 6 cm of paste in 1 cm cells at the start: the lower six layers full, the upper six empty.
