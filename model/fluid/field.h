@@ -75,7 +75,8 @@ struct FluidRegion {
   // particles (fluid/flow_coupling.h); the keys below are read only then. The FluidField never sees such a
   // region.
   bool flow = false;
-  double flow_cell = 0.0;         // m, cubic cells tiling the region from bottom to flow_top
+  double flow_cell = 0.0;         // m, the cells' size: `cell`, or the geometric mean of the sizes from `cells`
+  std::array<int, 3> flow_cells{};  // cells along x, y, z tiling the region from bottom to flow_top
   double flow_top = 0.0;          // m, top of the flow box (air above the surface; an open side)
   double kernel_width = 2.0;      // -, c of the particles' kernels (model/coupling/kernel.h)
   long coupling_interval = 1;     // DEM steps per coupling cycle (one flow interval)

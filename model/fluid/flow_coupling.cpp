@@ -18,14 +18,12 @@ namespace {
 
 using Vec = std::array<double, 3>;
 
-// The region's box as the flow's grid: cubic cells, no-slip walls on five sides, the top open (p = 0: the air
+// The region's box as the flow's grid: its cells (fluid_scene.h: cubic, or nearly), no-slip walls on five sides, the top open (p = 0: the air
 // above the paste may leave and enter).
 flow::Grid region_grid(const FluidRegion& r) {
   flow::Grid g;
-  const double c = r.flow_cell;
-  g.n = {static_cast<int>(std::lround((r.x_max - r.x_min) / c)), static_cast<int>(std::lround((r.y_max - r.y_min) / c)),
-         static_cast<int>(std::lround((r.flow_top - r.z_bottom) / c))};
-  g.h = {c, c, c};
+  g.n = r.flow_cells;
+  g.h = {(r.x_max - r.x_min) / g.n[0], (r.y_max - r.y_min) / g.n[1], (r.flow_top - r.z_bottom) / g.n[2]};
   g.origin = {r.x_min, r.y_min, r.z_bottom};
   g.bc[5].type = flow::BoundaryType::open;
   return g;

@@ -2,6 +2,7 @@
 #include "model/fluid/fluid_scene.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 
@@ -14,6 +15,8 @@
 namespace pastemix::model::fluid {
 
 namespace {
+
+constexpr double kMaxCellAspect = 1.2;  // -, largest over smallest cell side of a `cells = [nx, ny, nz]` grid
 
 drag::CurveId curve_by_name(const Params& p, std::string_view key, const std::string& name) {
   auto id = drag::find_curve(name);
@@ -114,13 +117,14 @@ void read_drag_law(const Params& f, const std::string& scene_path, FluidRegion& 
 void read_dynamics(const Params& f, FluidRegion& r, const Vec3& domain_max) {
   const bool flow = f.choice_or("dynamics", {"at_rest", "flow"}, "at_rest") == "flow";
   if (!flow) {
-    for (const char* key : {"cell", "top", "kernel_width", "coupling_interval", "regularisation"})
+    for (const char* key : {"cell", "cells", "top", "kernel_width", "coupling_interval", "regularisation"})
       if (f.has(key)) f.fail(key, fmt::format("{} is a key of dynamics = \"flow\" (this region is at rest)", key));
     return;
   }
-  if (!f.has("cell"))
-    f.fail("dynamics", "dynamics = \"flow\" needs the flow grid: cell = SIZE (m, cubic cells that tile the region)");
-  const double cell = f.number("cell", Range::positive);
+  if (f.has("cell") == f.has("cells"))
+    f.fail(f.has("cell") ? "cells" : "dynamics",
+           "dynamics = \"flow\" needs the flow grid, one of: cell = SIZE (m, cubic cells that tile the region) or "
+           "cells = [nx, ny, nz] (the cells along x, y, z; nearly cubic)");
   const double top = f.number_or("top", domain_max.z, Range::any);
   if (top > domain_max.z)
     f.fail("top", fmt::format("top = {:g} m is above the [domain] box (z up to {:g} m): the flow box would reach "
@@ -130,16 +134,39 @@ void read_dynamics(const Params& f, FluidRegion& r, const Vec3& domain_max) {
     f.fail("top", fmt::format("top = {:g} m must lie above the surface ({:g} m): the flow box holds the air above "
                               "the paste",
                               top, r.z_surface0));
-  // The grid must tile the region: a box that is not a whole number of cells would move its walls.
-  auto tiles = [&](const char* key, const char* what, double length) {
-    const double n = length / cell;
-    if (std::abs(n - std::round(n)) > 1e-9 * n || std::round(n) < 1.0)
-      f.fail(key, fmt::format("the region's {} ({:g} m) is not a whole number of {:g} m cells ({:.6g})", what, length,
-                              cell, n));
-  };
-  tiles("cell", "x extent", r.x_max - r.x_min);
-  tiles("cell", "y extent", r.y_max - r.y_min);
-  tiles(f.has("top") ? "top" : "cell", "height from bottom to top", top - r.z_bottom);
+  const std::array<double, 3> extent{r.x_max - r.x_min, r.y_max - r.y_min, top - r.z_bottom};
+  if (f.has("cell")) {
+    const double cell = f.number("cell", Range::positive);
+    // The grid must tile the region: a box that is not a whole number of cells would move its walls.
+    const char* what[3] = {"x extent", "y extent", "height from bottom to top"};
+    for (int d = 0; d < 3; ++d) {
+      const double n = extent[d] / cell;
+      if (std::abs(n - std::round(n)) > 1e-9 * n || std::round(n) < 1.0)
+        f.fail(d == 2 && f.has("top") ? "top" : "cell",
+               fmt::format("the region's {} ({:g} m) is not a whole number of {:g} m cells ({:.6g}); cells = [nx, "
+                           "ny, nz] sets the cells per axis instead",
+                           what[d], extent[d], cell, n));
+      r.flow_cells[d] = static_cast<int>(std::lround(n));
+    }
+    r.flow_cell = cell;
+  } else {
+    const std::vector<double> n = f.numbers("cells", 3);
+    std::array<double, 3> h{};
+    for (int d = 0; d < 3; ++d) {
+      if (!(n[d] >= 1.0) || n[d] != std::floor(n[d]) || n[d] > 1e5)
+        f.fail("cells", fmt::format("cells = [nx, ny, nz] must be whole numbers >= 1 (axis {}: {:g})", d, n[d]));
+      r.flow_cells[d] = static_cast<int>(n[d]);
+      h[d] = extent[d] / n[d];
+    }
+    // Nearly cubic: the disturbance correction of the drag (model/coupling/drag.h) is tabulated for cubic cells
+    // and takes their geometric mean size; 20 % apart at most (e.g. 1 cm x 1.03 cm for a 16.5 cm side).
+    const auto [lo, hi] = std::minmax_element(h.begin(), h.end());
+    if (*hi > kMaxCellAspect * *lo)
+      f.fail("cells", fmt::format("cells = [{}, {}, {}] gives cells of {:.4g} x {:.4g} x {:.4g} m: more than {:g} "
+                                  "apart (the drag's disturbance correction assumes nearly cubic cells)",
+                                  r.flow_cells[0], r.flow_cells[1], r.flow_cells[2], h[0], h[1], h[2], kMaxCellAspect));
+    r.flow_cell = std::cbrt(h[0] * h[1] * h[2]);
+  }
   const double c = f.number_or("kernel_width", coupling::kDefaultWidthFactor, Range::positive);
   if (c < coupling::kMinWidthFactor)
     f.fail("kernel_width", fmt::format("kernel_width = {:g} is below its minimum {} (model/coupling/kernel.h: a "
@@ -160,7 +187,7 @@ void read_dynamics(const Params& f, FluidRegion& r, const Vec3& domain_max) {
   } else if (f.has("regularisation")) {
     f.fail("regularisation", "regularisation is for a paste with a yield stress (this one has none)");
   }
-  r.flow = true, r.flow_cell = cell, r.flow_top = top, r.kernel_width = c, r.coupling_interval = interval;
+  r.flow = true, r.flow_top = top, r.kernel_width = c, r.coupling_interval = interval;
 }
 
 }  // namespace

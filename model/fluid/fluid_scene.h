@@ -26,7 +26,9 @@
 //   dynamics = "at_rest"                 # default: the paste at rest (this file's model); or "flow": the
 //                                        # region's paste solved by the flow solver, coupled both ways (issue
 //                                        # 18), with its keys:
-//   cell = 0.005                         #   m, the flow grid's cubic cells (required), tiling the region
+//   cell = 0.005                         #   m, the flow grid's cubic cells, tiling the region; or
+//   cells = [20, 16, 15]                 #   the cells along x, y, z from the bottom to `top` (one of the two
+//                                        #   required), sides within 1.2 of each other (a 16.5 cm side in ~1 cm)
 //   top = 0.2                            #   m, top of the flow box (air above the surface), default the domain's
 //   kernel_width = 2.0                   #   c of the particles' kernels (model/coupling/kernel.h), >= 1.2091
 //   coupling_interval = 1                #   DEM steps per coupling cycle (fluid/flow_coupling.h), >= 1
@@ -37,7 +39,7 @@
 //
 // Checks: positive density and viscosities, non-negative yield stress, extents min < max, surface above the
 // bottom, a known curve with admissible coefficients (exactly one of curve / curve_from); with dynamics =
-// "flow": a grid (cell), a top inside the domain and above the surface, cells that tile the region, a kernel
+// "flow": a grid (cell or cells), a top inside the domain and above the surface, cells that tile the region, a kernel
 // width at or above its minimum, coupling_interval >= 1, regularisation with (only with) a yield stress, no
 // collective rule, no second region.
 #pragma once

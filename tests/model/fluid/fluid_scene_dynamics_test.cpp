@@ -3,6 +3,8 @@
 // a grid that tiles the region, a top inside the domain, a kernel width at or above its minimum, a coupling
 // interval >= 1, a regularisation with a yield stress, no collective rule and no second region. Every error
 // names the scene file, its line and key.
+#include <array>
+#include <cmath>
 #include <unistd.h>
 
 #include <filesystem>
@@ -74,7 +76,8 @@ TEST_CASE("fluid scene: dynamics is at_rest by default and when named, and reads
 TEST_CASE("fluid scene: dynamics = flow without a grid, with a kernel below its minimum, or not fitting the domain") {
   Dir d;
   auto flow = [&](const std::string& keys) { return error_of(d, with(tiny_scene(), "#DYN", "dynamics = \"flow\"\n" + keys)); };
-  says(flow(""), "needs the flow grid: cell = SIZE");
+  says(flow(""), "needs the flow grid, one of: cell = SIZE");
+  says(flow("cell = 0.005\ncells = [12, 12, 30]"), "needs the flow grid, one of");
   says(flow("cell = 0.005\nkernel_width = 1.0"), "kernel_width = 1 is below its minimum 1.2091");
   says(flow("cell = 0.005\ntop = 0.4"), "top = 0.4 m is above the [domain] box");
   says(flow("cell = 0.005\ntop = 0.05"), "must lie above the surface");
@@ -111,4 +114,23 @@ TEST_CASE("fluid scene: a valid dynamics = flow region is the flow pass's, with 
   CHECK(s.fluid[0].coupling_interval == 20);
   CHECK(s.fluid[0].regularisation == 100.0);
   CHECK(s.fluid[0].kernel_width == 2.5);
+  CHECK(s.fluid[0].flow_cells == std::array<int, 3>{12, 12, 30});  // 0.06 x 0.06 x 0.15 m in 5 mm cells
+}
+
+TEST_CASE("fluid scene: cells = [nx, ny, nz] sets a nearly cubic grid that need not divide by one size") {
+  Dir d;
+  auto scene = [&](const std::string& keys) {
+    return with(tiny_scene(), "#DYN", "dynamics = \"flow\"\nregularisation = 100\ntop = 0.15\n" + keys);
+  };
+  auto flow = [&](const std::string& keys) { return error_of(d, scene(keys)); };
+  says(flow("cells = [6, 6]"), "cells");
+  says(flow("cells = [6, 0, 15]"), "must be whole numbers >= 1 (axis 1: 0)");
+  says(flow("cells = [6, 6.5, 15]"), "must be whole numbers >= 1 (axis 1: 6.5)");
+  says(flow("cells = [6, 4, 15]"), "more than 1.2 apart");  // 1 cm x 1.5 cm x 1 cm
+  // 0.06 x 0.06 x 0.15 m in 6 x 5 x 15 cells: 1 cm x 1.2 cm x 1 cm, at the limit, is allowed.
+  std::ofstream(d.path / "scene.toml") << scene("cells = [6, 5, 15]");
+  const Scene s = load_scene(d.path / "scene.toml");
+  REQUIRE(s.fluid.size() == 1);
+  CHECK(s.fluid[0].flow_cells == std::array<int, 3>{6, 5, 15});
+  CHECK(s.fluid[0].flow_cell == doctest::Approx(std::cbrt(0.01 * 0.012 * 0.01)).epsilon(1e-12));
 }
