@@ -1,0 +1,85 @@
+#!/usr/bin/env python3
+"""Issue 22: the convergence table of case 3 with dynamics = "flow" (docs/studies/case3_flow/study.sh).
+
+For every finished run (a `done` marker) it makes the paste-field maps (`pastemix maps`, kept in <run>/maps)
+and compares each refinement with the base run of the same seed (common random numbers):
+  dC     the mean over the 36 blocks of |C_variant - C_base| (C: mixing degree, %, eq. 3.8)
+  layers the rock mass per layer (g, layer 1 = top), variant minus base
+against the seed spread of the base (seeds 3, 4, 5): the mean over the blocks of the sd of C, and the sd of each
+layer's mass. A refinement "changes the map by less than the seed spread" when dC <= that mean sd and every
+layer's change is within its sd. No lab number is read: this is a model-to-model comparison, made before any
+flow score (the issue's order).
+    /usr/bin/python3 scripts/flow_convergence.py [--pastemix build/pastemix] [--runs out/studies/case3_flow]
+"""
+import argparse
+import os
+import statistics
+import subprocess
+import sys
+
+import h5py
+import numpy as np
+
+BASE_SEEDS = ["base_s3", "base_s4", "base_s5"]
+
+
+def maps_of(pm, run_dir, lab_h5):
+    maps = os.path.join(run_dir, "maps", "maps.h5")
+    if not os.path.exists(maps):
+        result = os.path.join(run_dir, "mixing_case3.h5")
+        cmd = [pm, "maps", result, "--lab", "3", "--lab-h5", lab_h5, "--out", os.path.join(run_dir, "maps")]
+        done = subprocess.run(cmd, capture_output=True, text=True)
+        if done.returncode != 0:
+            raise SystemExit(f"flow_convergence: {' '.join(cmd)} failed:\n{done.stdout}{done.stderr}")
+    with h5py.File(maps) as f:
+        C = np.array(f["blocks/C"])  # (i, j, k)
+        rock = np.array(f["blocks/rock_mass_kg"]) * 1e3  # g
+        state = f.attrs["state"]
+    with h5py.File(os.path.join(run_dir, "mixing_case3.h5")) as r:
+        wall = r["/profile"].attrs["wall_seconds"]
+        flow = r["/flow"].attrs
+        cost = dict(flow_steps=int(flow["flow_steps"]), solver_s=float(flow.get("solver_seconds", float("nan"))))
+    return dict(C=C, layers=rock.sum(axis=(0, 1)), state=state, wall=wall, **cost)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--pastemix", default="build/pastemix")
+    ap.add_argument("--runs", default="out/studies/case3_flow")
+    ap.add_argument("--lab-h5", default="out/lab/lab.h5")
+    a = ap.parse_args()
+    names = sorted(n for n in os.listdir(a.runs) if os.path.exists(os.path.join(a.runs, n, "done")))
+    m = {n: maps_of(a.pastemix, os.path.join(a.runs, n), a.lab_h5) for n in names}
+    print("case 3 with flow: runs (maps from the paste field; layers g, layer 1 = top)")
+    print(f"{'run':>14} | {'state':>8} | {'layer 1':>8} {'layer 2':>8} {'layer 3':>8} | {'wall s':>7} | flow steps | flow solver s")
+    for n in names:
+        r = m[n]
+        L = r["layers"]
+        print(f"{n:>14} | {r['state']:>8} | {L[0]:8.1f} {L[1]:8.1f} {L[2]:8.1f} | {r['wall']:7.0f} | {r['flow_steps']:10d} | {r['solver_s']:.0f}")
+    seeds = [m[n] for n in BASE_SEEDS if n in m]
+    if len(seeds) < 2:
+        print("seed spread: needs at least two of", ", ".join(BASE_SEEDS), "(not finished yet)")
+        sd_C, sd_L = None, None
+    else:
+        sd_C = float(np.mean(np.std(np.stack([s["C"] for s in seeds]), axis=0, ddof=1)))
+        sd_L = [statistics.stdev(s["layers"][k] for s in seeds) for k in range(3)]
+        print(f"seed spread of the base ({len(seeds)} seeds): mean block sd of C {sd_C:.2f} %, layer sd "
+              + " / ".join(f"{v:.1f}" for v in sd_L) + " g")
+    if "base_s3" not in m:
+        return 0
+    base = m["base_s3"]
+    print(f"\n{'refinement':>14} | {'mean |dC| %':>11} | {'d layer 1':>9} {'d layer 2':>9} {'d layer 3':>9} | within the seed spread")
+    for n in names:
+        if n.startswith("base"):
+            continue
+        r = m[n]
+        dC = float(np.mean(np.abs(r["C"] - base["C"])))
+        dL = r["layers"] - base["layers"]
+        verdict = "(no spread yet)" if sd_C is None else (
+            "yes" if dC <= sd_C and all(abs(dL[k]) <= sd_L[k] for k in range(3)) else "NO")
+        print(f"{n:>14} | {dC:11.2f} | {dL[0]:9.1f} {dL[1]:9.1f} {dL[2]:9.1f} | {verdict}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
