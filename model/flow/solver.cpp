@@ -122,7 +122,7 @@ double FlowSolver::next_time_step() const {
   const double gmag = std::hypot(s_.gravity[0], s_.gravity[1], s_.gravity[2]);
   if (gmag > 0.0) dt = std::min(dt, std::sqrt(s_.cfl * std::min({g_.h[0], g_.h[1], g_.h[2]}) / gmag));
   // A step that has collapsed (a velocity runaway) stops the run with its diagnosis (model/flow/step_guard.h).
-  require_time_step_above_floor(g_, StepControl{s_.cfl, s_.max_time_step, s_.gravity}, u_, alpha_, dt, t_, totals_.steps);
+  require_time_step_above_floor(g_, StepControl{s_.cfl, s_.max_time_step, s_.gravity}, u_, alpha_, dt, t_, totals_.steps, &eps_);
   return dt;
 }
 

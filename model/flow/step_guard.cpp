@@ -87,7 +87,7 @@ ReferenceStep reference_step(const Grid& g, const StepControl& c) {
 }
 
 void require_time_step_above_floor(const Grid& g, const StepControl& c, const Faces& u, const std::vector<double>& alpha,
-                                   double dt, double time, long step) {
+                                   double dt, double time, long step, const std::vector<double>* eps_f) {
   const ReferenceStep ref = reference_step(g, c);
   const double floor = ref.dt / kStepCollapse;
   if (dt >= floor) return;
@@ -100,7 +100,10 @@ void require_time_step_above_floor(const Grid& g, const StepControl& c, const Fa
       "of the {} {:.3g} s); fastest face: {} face ({}, {}, {}) at ({:.4g}, {:.4g}, {:.4g}) m, |u| = {:.4g} m/s, "
       "paste fraction {:.3f} | {:.3f} on its two sides; fastest paste face {:.3g} m/s: {}",
       time, step, dt, floor, kStepCollapse, ref.what, ref.dt, "xyz"[f.c], f.q[0], f.q[1], f.q[2], x[0], x[1], x[2],
-      f.speed, a[0], a[1], paste.speed, cause(g, f, a, paste.speed)));
+      f.speed, a[0], a[1], paste.speed, cause(g, f, a, paste.speed)) +
+      (eps_f && !eps_f->empty() ? fmt::format(" (fluid fraction {:.3f} | {:.3f} on its two sides)", sides(g, *eps_f, f.c, f.q)[0],
+                                              sides(g, *eps_f, f.c, f.q)[1])
+                                : std::string()));
 }
 
 }  // namespace pastemix::flow

@@ -39,8 +39,9 @@ ReferenceStep reference_step(const Grid& g, const StepControl& c);
 inline double time_step_floor(const Grid& g, const StepControl& c) { return reference_step(g, c).dt / kStepCollapse; }
 
 // RuntimeFailure (exit 3) with the diagnosis when the CFL step dt (s) is below time_step_floor; `alpha` is the
-// paste fraction per cell, `time` and `step` where the run stands.
+// paste fraction per cell, `time` and `step` where the run stands; `eps_f`, with particles in the cells, the
+// fluid fraction per cell (named on the fastest face's two sides too: a runaway in a packed pile shows there).
 void require_time_step_above_floor(const Grid& g, const StepControl& c, const Faces& u, const std::vector<double>& alpha,
-                                   double dt, double time, long step);
+                                   double dt, double time, long step, const std::vector<double>* eps_f = nullptr);
 
 }  // namespace pastemix::flow

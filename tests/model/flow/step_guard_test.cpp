@@ -102,3 +102,23 @@ TEST_CASE("step guard: a run with a runaway face stops in advance_to instead of 
   CHECK(steps == -1);
   CHECK(s.time() == 0.0);  // no step was taken at the collapsed dt
 }
+
+TEST_CASE("step guard: with particles in the cells the diagnosis names the fluid fraction on the face's two sides") {
+  // A runaway inside a packed rock pile (case 3's crater, issue 22) reads "air ... in the air" by the paste
+  // fraction alone; the fluid fraction on the two sides says the face is in the pile.
+  FlowSolver s = column();
+  const StepControl c{0.3, 0.05, {0.0, 0.0, -9.81}};
+  const double dt = 0.5 * time_step_floor(s.grid(), c);
+  std::vector<double> eps_f(s.grid().cell_count(), 1.0);
+  const std::array<int, 3> q{2, 1, 8};  // an x face between cells (1, 1, 8) and (2, 1, 8)
+  eps_f[s.grid().cell(1, 1, 8)] = 0.43;
+  eps_f[s.grid().cell(2, 1, 8)] = 0.45;
+  cfl_step(s, 0, q, 40.0);
+  const std::string with = runtime_failure_of(
+      [&] { require_time_step_above_floor(s.grid(), c, s.velocity(), s.alpha(), dt, 1.5, 7, &eps_f); });
+  CAPTURE(with);
+  CHECK(with.ends_with("air velocity runaway in the air (fluid fraction 0.430 | 0.450 on its two sides)"));
+  const std::string without = runtime_failure_of(
+      [&] { require_time_step_above_floor(s.grid(), c, s.velocity(), s.alpha(), dt, 1.5, 7); });
+  CHECK(without.ends_with("air velocity runaway in the air"));
+}
