@@ -217,13 +217,30 @@ void CoupledFlow::flow_interval(CoupledParticles& p, double T, const Start& s0, 
         for (std::size_t i = 0; i < n; ++i) st.particle_exchange[c] += J[i][c], st.exchange_scale += std::abs(J[i][c]);
       }
     };
+    flow::Faces before_reaction;  // the faces before the sub-cycle's reaction (bound_reaction's hull)
     auto react = [&](double, flow::Faces& u, const flow::Faces& mass) {
       if (j != 0) return;  // the sub-cycle's reaction once, in the first sub-step
       const flow::Faces before = u;
+      before_reaction = u;
       st.dropped_yield += exchange_.react(at_start_view, u, mass, &s0.mask, sub).dropped_yield;
       book(before, u, mass, sub);
     };
     auto correct = [&](double h, flow::Faces& u, const flow::Faces& mass) {
+      if (j == 0) {  // the reaction of the first sub-step, bounded now that the step has passed it on
+        const flow::Faces entry = u;
+        std::vector<Vec> back;
+        const ExchangeStats e = exchange_.bound_reaction(at_start_view, before_reaction, u, mass, &s0.mask, sub, p.v, back);
+        st.clipped_reaction += e.clipped;
+        if (e.clipped_faces > 0) {
+          for (std::size_t i = 0; i < n; ++i)
+            for (int c = 0; c < 3; ++c) p.v[i][c] += back[i][c] / p.m[i];
+          // The books: the faces gave up what the particles got back (u changed here, outside the hooks' own).
+          for (int c = 0; c < 3; ++c)
+            for (std::size_t i = 0; i < n; ++i) st.particle_exchange[c] += back[i][c], st.exchange_scale += std::abs(back[i][c]);
+          for (int c = 0; c < 3; ++c)
+            for (std::size_t f = 0; f < u[c].size(); ++f) st.fluid_exchange[c] += mass[c][f] * (u[c][f] - entry[c][f]);
+        }
+      }
       const flow::Faces mask = flow::face_means(g, flow_.alpha()), before = u;
       const ExchangeStats e = exchange_.correct(h, view, p.v, u, mass, &mask, reference, impulse);
       st.exchange_iterations += e.iterations;

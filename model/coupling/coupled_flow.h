@@ -66,6 +66,7 @@ struct CycleStats {
   int stuck_steps = 0;          // particle-steps the yield part held
   int exchange_iterations = 0;  // CG, summed
   double dropped_yield = 0.0;   // N s (exchange.h)
+  double clipped_reaction = 0.0;  // N s the bounded reaction gave back to the particles (exchange.h: bound_reaction)
   // The exchange's books (N s): what the particles got from the paste's drag over the cycle (the sub-cycle's
   // yield impulses and the implicit drag's), what the faces' momentum changed by inside the exchange, and
   // sum |J| over particles and components (the scale of the first two).

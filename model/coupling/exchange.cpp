@@ -138,6 +138,57 @@ ExchangeStats Exchange::react(const ExchangeParticles& p, flow::Faces& u, const 
   return st;
 }
 
+ExchangeStats Exchange::bound_reaction(const ExchangeParticles& p, const flow::Faces& before, flow::Faces& u,
+                                       const flow::Faces& face_mass, const flow::Faces* paste_mask,
+                                       const std::vector<std::array<double, 3>>& subcycle_impulse,
+                                       std::span<const std::array<double, 3>> velocity,
+                                       std::vector<std::array<double, 3>>& returned) const {
+  const std::size_t n = p.centre.size();
+  if (subcycle_impulse.size() != n || velocity.size() != n)
+    throw std::invalid_argument("coupling exchange: sub-cycle impulses, velocities and particles differ in length");
+  returned.assign(n, {0.0, 0.0, 0.0});
+  const Rows W = rows(p, face_mass, paste_mask);
+  ExchangeStats st;
+  for (int c = 0; c < 3; ++c) {
+    std::vector<double> reaction(u[c].size(), 0.0), lo(before[c]), hi(before[c]);
+    for (std::size_t i = 0; i < n; ++i) {
+      if (subcycle_impulse[i][c] == 0.0) continue;
+      const Row& r = W[c][i];
+      r.spread(-subcycle_impulse[i][c], reaction);
+      for (long f : r.face) lo[f] = std::min(lo[f], velocity[i][c]), hi[f] = std::max(hi[f], velocity[i][c]);
+    }
+    std::vector<double> given_up(u[c].size(), 0.0);  // per face, the share of its reaction it gives up, [0, 1]
+    bool any = false;
+    for (std::size_t f = 0; f < u[c].size(); ++f) {
+      const double R = reaction[f];
+      if (R == 0.0) continue;
+      // The excess (m/s) past the hull on the side the reaction pushed, at most the reaction's own kick.
+      const double excess = R > 0.0 ? u[c][f] - hi[f] : lo[f] - u[c][f];
+      if (!(excess > 0.0)) continue;
+      const double kick = std::abs(R) / face_mass[c][f];
+      // Only a face that kept most of its kick: one whose stresses passed the force on (the paste around a
+      // yield-held sphere creeps at 1e-6 m/s, past a hull of ~0) is left alone.
+      if (std::copysign(1.0, R) * (u[c][f] - before[c][f]) < kKeptKick * kick) continue;
+      if (paste_mask != nullptr && (*paste_mask)[c][f] >= kThinPaste) continue;
+      const double back = std::min(excess, kick);
+      u[c][f] -= std::copysign(back, R);
+      given_up[f] = back / kick;
+      ++st.clipped_faces;
+      any = true;
+    }
+    if (!any) continue;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (subcycle_impulse[i][c] == 0.0) continue;
+      const Row& r = W[c][i];
+      double back = 0.0;  // N s: particle i's part of what its faces gave up
+      for (std::size_t e = 0; e < r.face.size(); ++e) back -= given_up[r.face[e]] * r.w[e] * subcycle_impulse[i][c];
+      returned[i][c] = back;
+      st.clipped += std::abs(back);
+    }
+  }
+  return st;
+}
+
 ExchangeStats Exchange::correct(double dt, const ExchangeParticles& p, std::vector<std::array<double, 3>>& v,
                                 flow::Faces& u, const flow::Faces& face_mass, const flow::Faces* paste_mask,
                                 const std::vector<std::array<double, 3>>& reference,
