@@ -3,9 +3,11 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include <fmt/format.h>
 
+#include "base/error.h"
 #include "base/units.h"
 #include "model/coupling/coupled_flow.h"
 #include "model/flow/bingham.h"
@@ -252,11 +254,21 @@ void pack_state(IO& io, S& st, C& coupled, std::vector<char>& member, std::vecto
   io(f.last), io(f.totals);
 }
 
+// The raw-byte structs of the flow state, by size: a checkpoint of another build (a field added to the cycle's
+// stats, say) is then named as such instead of reading as damaged bytes.
+std::string flow_sizes_tag() {
+  return fmt::format("flow state: CycleStats {} StepStats {} Totals {}", sizeof(coupling::CycleStats),
+                     sizeof(flow::FlowSolver::State::last), sizeof(flow::FlowSolver::State::totals));
+}
+
 }  // namespace
 
 std::vector<char> FlowCoupling::save() const {
   StateBytes b;
   auto io = [&](auto& v) { b.put(v); };
+  const std::string t = flow_sizes_tag();
+  std::vector<char> tag(t.begin(), t.end());
+  io(tag);
   bool started = started_;
   io(started);
   if (!started_) return b.data();
@@ -272,6 +284,12 @@ std::vector<char> FlowCoupling::save() const {
 void FlowCoupling::restore(const std::vector<char>& bytes, const Particles& p) {
   StateReader rd({reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()}, "checkpoint (flow state)");
   auto io = [&](auto& v) { rd.get(v); };
+  std::vector<char> tag;
+  io(tag);
+  if (std::string(tag.begin(), tag.end()) != flow_sizes_tag())
+    throw InputError("checkpoint", 0, "/checkpoint/state",
+                     fmt::format("flow state written by another version of pastemix ({}; this one: {}): start the run again",
+                                 std::string(tag.begin(), tag.end()), flow_sizes_tag()));
   io(started_);
   ++membership_;  // whatever the bytes hold, the members are theirs now
   if (!started_) return;
