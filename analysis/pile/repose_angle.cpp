@@ -69,7 +69,18 @@ ReposeAngle measure_repose_angle(std::span<const Vec3> position, std::span<const
     int peak = 0;
     for (int b = 1; b < bins; ++b)
       if (surface[static_cast<std::size_t>(s * bins + b)] > surface[static_cast<std::size_t>(s * bins + peak)]) peak = b;
-    for (int b = 0; b < bins; ++b) {
+    // The pile ends at its foot: outward of the peak, the first two bins in a row at or below the toe height
+    // (an empty bin counts as such). Beyond lies debris: spheres that bounced or rolled off, each a lone
+    // surface point of about its own diameter. Counted as flank or reach, a lone 8 mm sphere half a metre out
+    // (the chapter-5 falling-height piles, 2.5 cm high) flattened the line and set the sector's diameter.
+    const auto low = [&](int b) { return b >= bins || surface[static_cast<std::size_t>(s * bins + b)] <= toe; };
+    int foot = bins;
+    for (int b = peak + 1; b < bins; ++b)
+      if (low(b) && low(b + 1)) {
+        foot = b;
+        break;
+      }
+    for (int b = 0; b < foot; ++b) {
       const double h = surface[static_cast<std::size_t>(s * bins + b)];
       if (h == none) continue;
       const double rho = (b + 0.5) * bin;
@@ -103,8 +114,9 @@ ReposeAngle measure_repose_angle(std::span<const Vec3> position, std::span<const
   out.diameter = 2.0 * d.mean;
   out.method = fmt::format(
       "surface = highest sphere top per ({} sectors x {:.2f} mm radial bins); least-squares flank between {:.0f} "
-      "and {:.0f} % of the pile height, outward of the sector's highest cell; mean over sectors",
-      opt.sectors, bin * 1e3, opt.flank_lo * 100, opt.flank_hi * 100);
+      "and {:.0f} % of the pile height, outward of the sector's highest cell and inside its foot (two bins in a row at or below the toe, {:.2f} mm); "
+      "mean over sectors",
+      opt.sectors, bin * 1e3, opt.flank_lo * 100, opt.flank_hi * 100, toe * 1e3);
   return out;
 }
 
