@@ -45,6 +45,7 @@ ReposeAngle measure_repose_angle(std::span<const Vec3> position, std::span<const
   const int bins = static_cast<int>(rho_max / bin) + 1;
   const double none = -std::numeric_limits<double>::infinity();
   std::vector<double> surface(static_cast<std::size_t>(opt.sectors * bins), none);
+  std::vector<double> lift(surface.size(), 0.0);  // m, the surface sphere's bottom above the base
   double height = 0.0;
   for (std::size_t p = 0; p < n; ++p) {
     const double dx = position[p].x - axis[0], dy = position[p].y - axis[1];
@@ -53,8 +54,8 @@ ReposeAngle measure_repose_angle(std::span<const Vec3> position, std::span<const
     int s = std::min(opt.sectors - 1, static_cast<int>(phi / (2.0 * units::pi) * opt.sectors));
     int b = static_cast<int>(rho / bin);
     const double top = position[p].z + radius[p] - opt.base_z;
-    auto& cell = surface[static_cast<std::size_t>(s * bins + b)];
-    cell = std::max(cell, top);
+    const auto c = static_cast<std::size_t>(s * bins + b);
+    if (top > surface[c]) surface[c] = top, lift[c] = top - 2.0 * radius[p];
     height = std::max(height, top);
   }
   std::vector<double> angles, radii;
@@ -69,11 +70,17 @@ ReposeAngle measure_repose_angle(std::span<const Vec3> position, std::span<const
     int peak = 0;
     for (int b = 1; b < bins; ++b)
       if (surface[static_cast<std::size_t>(s * bins + b)] > surface[static_cast<std::size_t>(s * bins + peak)]) peak = b;
-    // The pile ends at its foot: outward of the peak, the first two bins in a row at or below the toe height
-    // (an empty bin counts as such). Beyond lies debris: spheres that bounced or rolled off, each a lone
-    // surface point of about its own diameter. Counted as flank or reach, a lone 8 mm sphere half a metre out
-    // (the chapter-5 falling-height piles, 2.5 cm high) flattened the line and set the sector's diameter.
-    const auto low = [&](int b) { return b >= bins || surface[static_cast<std::size_t>(s * bins + b)] <= toe; };
+    // The pile ends at its foot: outward of the peak, the first two bins in a row whose surface sphere lies on
+    // the base (its bottom within a quarter of the mean diameter of it), or that are empty. A single layer,
+    // whatever its spheres' size, is no pile. Beyond lie the apron and the debris: spheres that bounced or
+    // rolled off, each a lone surface point of about its own diameter. Counted as flank or reach, they
+    // flattened the line and set the sector's diameter: a lone 8 mm sphere half a metre out, and the single
+    // layer of 3.35-8 mm spheres strewn 7-17 cm around the 2.9 cm high pile of a 10.5 cm drop (chapter 5's
+    // falling-height test: 5.4 deg without a foot, against ~22 deg read off its radial profile).
+    const auto low = [&](int b) {
+      return b >= bins || surface[static_cast<std::size_t>(s * bins + b)] == none ||
+             lift[static_cast<std::size_t>(s * bins + b)] < 0.25 * mean_d;
+    };
     int foot = bins;
     for (int b = peak + 1; b < bins; ++b)
       if (low(b) && low(b + 1)) {
@@ -114,9 +121,9 @@ ReposeAngle measure_repose_angle(std::span<const Vec3> position, std::span<const
   out.diameter = 2.0 * d.mean;
   out.method = fmt::format(
       "surface = highest sphere top per ({} sectors x {:.2f} mm radial bins); least-squares flank between {:.0f} "
-      "and {:.0f} % of the pile height, outward of the sector's highest cell and inside its foot (two bins in a row at or below the toe, {:.2f} mm); "
+      "and {:.0f} % of the pile height, outward of the sector's highest cell and inside its foot (two bins in a row whose top sphere lies on the base); "
       "mean over sectors",
-      opt.sectors, bin * 1e3, opt.flank_lo * 100, opt.flank_hi * 100, toe * 1e3);
+      opt.sectors, bin * 1e3, opt.flank_lo * 100, opt.flank_hi * 100);
   return out;
 }
 

@@ -11,8 +11,8 @@
 //     through those points gives the sector's angle atan(b). Excluding the rounded top and the toe (rolling particles) is what makes the number
 //     comparable to a lab protractor/height-diameter reading.
 //     The sector's pile ends at its foot, the first two radial bins in a row outward of the peak whose surface
-//     is at or below `toe_height` (or empty): spheres beyond it (debris that bounced or rolled away) are
-//     neither flank nor pile.
+//     sphere lies on the base (or that are empty): a single layer is no pile, and spheres beyond it (an apron,
+//     debris that bounced or rolled away) are neither flank nor pile.
 //  4. The angle is the mean over sectors with a usable flank; its standard deviation over sectors is the
 //     azimuthal spread. The pile diameter is twice the mean over sectors of the largest radius inside the
 //     foot at which the surface is still above `toe_height` (m) over the base.

@@ -96,6 +96,31 @@ TEST_CASE("repose angle: debris beyond the pile's foot (spheres that bounced or 
   CHECK(strewn.diameter == doctest::Approx(clean.diameter).epsilon(0.01));
 }
 
+TEST_CASE("repose angle: a low pile in a single-layer apron of larger spheres (a drop's scatter) reads its own flank") {
+  // A 22 deg cone of 4 mm spheres 6 cm in radius (2.4 cm high, like the 10.5 cm falling-height piles), in an
+  // apron of one layer of 3.35-8 mm spheres lying on the floor from 6 to 17 cm out. The apron's tops (3.35-8 mm)
+  // fall inside the flank band (15-75 % of the height: 3.6-18 mm); taken as flank they read 12.4 deg on the
+  // real pile (its radial profile: ~22 deg). The foot (two bins whose top sphere lies on the floor) ends them.
+  std::vector<pastemix::Vec3> pos;
+  std::vector<double> rad;
+  cone_pile(22.0, 0.06, 0.004, pos, rad, 4);
+  const ReposeOptions at_axis{.axis_xy = std::array<double, 2>{0.3, 0.2}};
+  const auto bare = measure_repose_angle(pos, rad, at_axis);
+  pastemix::Rng rng(8);
+  for (int k = 0; k < 600; ++k) {
+    const double rho = std::sqrt(rng.uniform(0.065 * 0.065, 0.17 * 0.17)), phi = rng.uniform(0.0, 2.0 * pastemix::units::pi);
+    const double r = 0.5 * rng.uniform(0.00335, 0.008);
+    pos.push_back({0.3 + rho * std::cos(phi), 0.2 + rho * std::sin(phi), r});
+    rad.push_back(r);
+  }
+  const auto apron = measure_repose_angle(pos, rad, at_axis);
+  MESSAGE("22 deg cone: " << bare.angle_deg << " deg, diameter " << bare.diameter << " m; in the apron " << apron.angle_deg
+                          << " +- " << apron.sd_deg << " deg, " << apron.diameter << " m");
+  CHECK(std::abs(bare.angle_deg - 22.0) < 1.0);
+  CHECK(std::abs(apron.angle_deg - bare.angle_deg) < 1.0);
+  CHECK(apron.diameter == doctest::Approx(bare.diameter).epsilon(0.1));
+}
+
 TEST_CASE("repose angle: particles that flowed away are a failure, not zero degrees") {
   std::vector<pastemix::Vec3> pos;
   std::vector<double> rad;
