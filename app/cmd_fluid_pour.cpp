@@ -52,6 +52,8 @@ std::string plot(const std::filesystem::path& csv, const std::filesystem::path& 
 
 struct PourOpts {
   int seeds = 15;
+  double flow_cell = 0.0;  // m; > 0: the paste with dynamics = "flow" at this cell
+  validation::PourFlow flow;
   std::string out = "out/fluid/ball_pour";
   validation::FunnelPour pour;
   PasteOpts paste;
@@ -67,6 +69,16 @@ void print_pour_header(const validation::FunnelPour& p, const Paste& paste) {
              p.balls, 1e3 * p.ball_d, p.rho_ball, 100 * p.top_d, 100 * p.exit_d, 100 * p.cone_h, 100 * p.tube,
              p.release, 100 * p.fall, 100 * p.box_x, 100 * p.box_y, 100 * p.paste_depth, p.restitution, p.friction,
              paste.ball_from, p.dt_rayleigh * tr, p.dt_rayleigh, tr);
+  if (p.flow) {
+    const auto n = validation::pour_flow_cells(p, *p.flow);
+    fmt::print("paste: dynamics = \"flow\", {} x {} x {} cells of {:.2f} x {:.2f} x {:.2f} mm up to {} cm of air above "
+               "the rim, kernel width {}, coupling interval {} steps, m = {} s; at rest: |v| < {} m/s for {} s\n",
+               n[0], n[1], n[2], 1e3 * p.box_x / n[0], 1e3 * p.box_y / n[1], 1e3 * (p.paste_depth + p.flow->air) / n[2],
+               100 * p.flow->air, p.flow->kernel_width, p.flow->coupling_interval, p.flow->regularisation,
+               p.flow->rest_speed, p.flow->rest_time);
+  } else {
+    fmt::print("paste: at rest (the at-rest field), at rest: v = 0\n");
+  }
   fmt::print("{:>5} {:>9} {:>9} {:>10} {:>9} {:>9} {:>9} {:>8} {:>7} {:>7} {:>7}\n", "seed", "Z min cm", "Z max cm",
              "suspended", "in funnel", "1st out s", "last out", "t end s", "ids", "wall s", "cpu s");
 }
@@ -141,6 +153,10 @@ void run_pour(const PourOpts& o) {
   validation::FunnelPour p = o.pour;
   p.tau_y = paste.tau_y, p.rho_paste = paste.rho, p.eta_B = paste.eta, p.curve = paste.curve;
   p.restitution = paste.ball_restitution, p.friction = paste.ball_friction;
+  if (o.flow_cell > 0.0) {
+    p.flow = o.flow;
+    p.flow->cell = o.flow_cell;
+  }
   print_paste(paste);
   print_pour_header(p, paste);
   PourTally t;
@@ -172,6 +188,12 @@ void register_pour(CLI::App* val) {
   cmd->add_option("--fall", o->pour.fall, "exit-tube bottom to paste surface (m), default 0.15");
   cmd->add_option("--exit-diameter", o->pour.exit_d, "funnel exit diameter (m), default 0.04");
   cmd->add_option("--out", o->out, "folder for ball_pour.csv, ball_pour_maps.png, ball_pour_z.png");
+  cmd->add_option("--flow", o->flow_cell, "the paste with dynamics = \"flow\" at this cell size (m), e.g. 0.01")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--interval", o->flow.coupling_interval, "with --flow: DEM steps per flow interval (default 50)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--regularisation", o->flow.regularisation, "with --flow: Papanastasiou's m, s (default 1000)")
+      ->check(CLI::PositiveNumber);
   add_paste_options(cmd, o->paste);
   cmd->callback([o] { run_pour(*o); });
 }

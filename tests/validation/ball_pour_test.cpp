@@ -5,6 +5,7 @@
 
 #include <doctest/doctest.h>
 
+#include <array>
 #include <filesystem>
 
 #include "tests/run_command.h"
@@ -32,6 +33,33 @@ TEST_CASE("fluid engine: 12 balls poured from the funnel: none left in it, all a
     CHECK(b.z_min > 0.085);
     CHECK(b.z_max < 0.135);
   }
+}
+
+TEST_CASE("ball pour with flow: 6 balls through the funnel into the moving paste rest suspended in it") {
+  // Issue 22's ball pour with dynamics = "flow", reduced: 6 balls, 2 cm cells (10 x 8 x 9: nearly cubic, the
+  // 16.5 cm side in 8 cells of 2.06 cm), the same funnel, fall, paste and step. The paste is regularised, so
+  // "at rest" is |v| < 0.1 mm/s held for 0.1 s (ball_pour.h), and the run ends there, not at end_time.
+  FunnelPour p;
+  p.balls = 6;
+  p.end_time = 2.0;
+  p.flow = PourFlow{};
+  p.flow->cell = 0.02;
+  const auto n = pour_flow_cells(p, *p.flow);
+  CHECK(n == std::array<int, 3>{10, 8, 9});
+  CHECK(ball_pour_scene(p, 1).find("dynamics = \"flow\"\ncells = [10, 8, 9]\ntop = 0.18") != std::string::npos);
+  const BallPourResult b = ball_pour(p, 1);
+  MESSAGE("Z " << b.z_min << " - " << b.z_max << ", rest " << b.at_rest << ", funnel " << b.in_funnel << ", floor "
+            << b.on_floor << ", t " << b.t_end << ", cycles " << b.flow_cycles << ", surface " << b.surface);
+  CHECK(b.ids_ok);
+  CHECK(b.flow_cycles > 0);
+  CHECK(b.in_funnel == 0);
+  CHECK(b.on_floor == 0);
+  CHECK(b.at_rest == 6);
+  CHECK(b.t_end < p.end_time);
+  CHECK(b.z_max < p.paste_depth);  // below the rim: in the paste, not floating on it
+  CHECK(b.z_min > 0.0063 + 1e-4);
+  // The area-mean surface: the paste's volume and the balls' over the frame's area, a 0.19 mm rise for 6 balls.
+  CHECK(b.surface == doctest::Approx(0.15 + 6 * 1.0474e-6 / (0.2 * 0.165)).epsilon(2e-3));
 }
 
 TEST_CASE("fluid CLI: validate ball-pour writes the positions and the maps, all balls out of the funnel") {

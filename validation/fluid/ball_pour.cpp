@@ -8,6 +8,7 @@
 
 #include "base/error.h"
 #include "base/units.h"
+#include "model/fluid/flow_coupling.h"
 #include "model/insert/fill.h"
 #include "model/scene.h"
 
@@ -87,6 +88,13 @@ std::string ball_pour_scene(const FunnelPour& p, std::uint64_t seed) {
       s += fmt::format("{}{:.17g}", k ? ", " : "", p.curve.coefficients[k]);
     s += "]\n";
   }
+  if (p.flow) {
+    const auto n = pour_flow_cells(p, *p.flow);
+    s += fmt::format("dynamics = \"flow\"\ncells = [{}, {}, {}]\ntop = {:.9g}\nkernel_width = {:.17g}\n"
+                     "coupling_interval = {}\nregularisation = {:.17g}\n",
+                     n[0], n[1], n[2], p.paste_depth + p.flow->air, p.flow->kernel_width, p.flow->coupling_interval,
+                     p.flow->regularisation);
+  }
   // Seeded random loose placement in the lowest fill_height of the cone (the engine's insertion).
   FillRegion region;
   region.shape = FillRegion::frustum;
@@ -106,6 +114,39 @@ std::string ball_pour_scene(const FunnelPour& p, std::uint64_t seed) {
   return s;
 }
 
+std::array<int, 3> pour_flow_cells(const FunnelPour& p, const PourFlow& f) {
+  if (!(f.cell > 0.0) || !(f.air > 0.0) || !(f.rest_speed > 0.0) || !(f.rest_time > 0.0))
+    throw InputError("ball_pour", 0, "flow", "cell, air, rest_speed and rest_time must be positive");
+  const auto whole = [&](double side) { return std::max(1, static_cast<int>(std::lround(side / f.cell))); };
+  return {whole(p.box_x), whole(p.box_y), whole(p.paste_depth + f.air)};
+}
+
+namespace {
+// The ball's state for the tally: in the paste (its bottom below the paste surface) and at rest.
+struct BallState {
+  const World& w;
+  const FunnelPour& p;
+  double surface = 0.0;  // m, with flow: the area-mean surface (the header's rule)
+  bool inside(std::size_t a) const {
+    if (!p.flow) return w.fluid()->inside(static_cast<long>(a));
+    return w.particles().x[a].z - 0.5 * p.ball_d < surface;
+  }
+  bool resting(std::size_t a) const {
+    const double v2 = norm2(w.particles().v[a]);
+    return p.flow ? v2 < p.flow->rest_speed * p.flow->rest_speed : v2 == 0.0;
+  }
+};
+
+double flow_surface(const World& w, const FunnelPour& p) {
+  const auto& pt = w.particles();
+  const double r = 0.5 * p.ball_d, area = p.box_x * p.box_y;
+  double below = 0.0;  // m3 of the balls below the rim (whole balls: a ball straddling the rim counts whole)
+  for (std::size_t a = 0; a < pt.size(); ++a)
+    if (pt.x[a].z - r < p.paste_depth) below += 4.0 / 3.0 * units::pi * r * r * r;
+  return (w.flow()->paste_volume() + below) / area;
+}
+}  // namespace
+
 BallPourResult ball_pour(const FunnelPour& p, std::uint64_t seed) {
   const Scene scene = parse_scene(ball_pour_scene(p, seed), fmt::format("ball_pour_seed{}.toml", seed));
   World w = make_world(scene);
@@ -118,6 +159,9 @@ BallPourResult ball_pour(const FunnelPour& p, std::uint64_t seed) {
   const auto& pt = w.particles();
   std::vector<char> out(pt.size(), 0);
   std::size_t n_out = 0;
+  // At rest: one check (v == 0 holds by itself: the at-rest paste's stick), or rest_time of them with flow.
+  const long checks_to_rest = p.flow ? std::max(1L, std::lround(p.flow->rest_time / (1000.0 * b.dt))) : 1;
+  long rest_checks = 0;
   for (long s = 1; s <= max_steps; ++s) {
     w.step();
     b.steps = s;
@@ -133,25 +177,27 @@ BallPourResult ball_pour(const FunnelPour& p, std::uint64_t seed) {
     if (s % 1000 == 0) {
       w.check();
       if (n_out < pt.size()) continue;
+      BallState st{w, p, p.flow ? flow_surface(w, p) : 0.0};
       bool all_rest = true;
-      for (std::size_t a = 0; a < pt.size() && all_rest; ++a)
-        all_rest = norm2(pt.v[a]) == 0.0 && w.fluid()->inside(static_cast<long>(a));
-      if (all_rest) break;
+      for (std::size_t a = 0; a < pt.size() && all_rest; ++a) all_rest = st.resting(a) && st.inside(a);
+      rest_checks = all_rest ? rest_checks + 1 : 0;
+      if (rest_checks >= checks_to_rest) break;
     }
   }
   w.check();
   b.t_end = w.time();
   b.z_min = 1e300, b.z_max = -1e300;
+  const BallState st{w, p, p.flow ? flow_surface(w, p) : 0.0};
   for (std::size_t a = 0; a < pt.size(); ++a) {
     b.x.push_back(pt.x[a].x);
     b.y.push_back(pt.x[a].y);
     b.z.push_back(pt.x[a].z);
     b.id.push_back(pt.id[a]);
-    const bool inside = w.fluid()->inside(static_cast<long>(a));
+    const bool inside = st.inside(a);
     b.in_paste += inside;
     const bool floor = pt.x[a].z - r < 1e-4;
     b.on_floor += floor;
-    b.at_rest += inside && !floor && norm2(pt.v[a]) == 0.0;
+    b.at_rest += inside && !floor && st.resting(a);
     if (pt.x[a].z + r > g.z_tube) {
       ++b.in_funnel;  // still in (or partly in) the funnel
       continue;
@@ -163,7 +209,8 @@ BallPourResult ball_pour(const FunnelPour& p, std::uint64_t seed) {
   std::sort(ids.begin(), ids.end());
   b.ids_ok = static_cast<int>(ids.size()) == p.balls;
   for (std::size_t k = 0; k < ids.size() && b.ids_ok; ++k) b.ids_ok = ids[k] == static_cast<std::int64_t>(k);
-  b.surface = w.fluid()->surface_z(0);
+  b.surface = p.flow ? st.surface : w.fluid()->surface_z(0);
+  if (p.flow) b.flow_cycles = w.flow()->cycles();
   return b;
 }
 

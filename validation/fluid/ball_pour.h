@@ -16,15 +16,33 @@
 //   measured steel-steel restitution and static friction (Tables 4.6, 4.7) and rolling friction 0.002
 //   (Table 4.4, literature; constant-torque law).
 // - Time step: a fraction of the ball's Rayleigh time (see VALIDATION.md section 5 for the choice).
+// - With `flow` (issue 22): the frame's paste is the region's dynamics = "flow" (the flow solver, coupled both
+//   ways; issue 18), on a grid of nearly cubic cells (cells = [nx, ny, nz], the frame's 16.5 cm side in whole
+//   cells) up to `air` above the rim. A regularised paste never holds a ball at exactly v = 0 (it creeps), so
+//   a ball rests once |v| < rest_speed, and the run ends once every ball is out of the funnel and has rested
+//   for rest_time; "in the paste" is the ball's bottom below the area-mean surface (the flow's paste volume plus
+//   the balls' volume below the rim, over the frame's area).
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "base/drag_curves.h"
 
 namespace pastemix::validation {
+
+struct PourFlow {
+  double cell = 0.01;            // m, the requested cell (each axis takes the nearest whole number of cells)
+  long coupling_interval = 50;   // DEM steps per flow interval
+  double regularisation = 1000;  // s, Papanastasiou's m (model/flow/bingham.h)
+  double kernel_width = 2.0;     // c of the balls' kernels (model/coupling/kernel.h)
+  double air = 0.03;             // m of air in the flow box above the rim
+  double rest_speed = 1e-4;      // m/s
+  double rest_time = 0.1;        // s
+};
 
 struct FunnelPour {
   int balls = 68;
@@ -42,6 +60,7 @@ struct FunnelPour {
   // Paste.
   double rho_paste = 1843.0, tau_y = 138.0, eta_B = 0.7;  // kg/m3, Pa, Pa.s
   drag::DragCurve curve{drag::CurveId::published_4_19, {}};
+  std::optional<PourFlow> flow;  // none: the paste at rest (model/fluid/field.h)
 };
 
 // Rayleigh time of the ball (s): pi r sqrt(rho/G) / (0.8766 + 0.163 nu).
@@ -52,7 +71,8 @@ struct BallPourResult {
   std::vector<double> x, y, z;  // m, final centres (frame corner at the origin, z above the frame bottom)
   std::vector<std::int64_t> id; // particle ids at the end (must be 0..balls-1)
   double z_min = 0.0, z_max = 0.0;  // m, over the balls that left the funnel
-  int at_rest = 0;        // balls at exact rest (v == 0) inside the paste, not on the floor: suspended
+  int at_rest = 0;        // balls at rest inside the paste, not on the floor: suspended (at rest: v == 0, or
+                          // |v| < rest_speed with flow)
   int on_floor = 0;       // balls touching the frame floor (within 0.1 mm): not suspended
   int in_funnel = 0;      // balls still above the exit-tube bottom at the end (jammed or not yet out)
   int in_paste = 0;       // balls inside the paste region (submerged volume > 0)
@@ -61,10 +81,14 @@ struct BallPourResult {
   double t_end = 0.0;     // s simulated
   double dt = 0.0;        // s
   long steps = 0;
+  long flow_cycles = 0;   // with flow: coupling cycles run
   bool ids_ok = false;
 };
 
 std::string ball_pour_scene(const FunnelPour& p, std::uint64_t seed);
+// The flow grid's cells along x, y, z for the requested cell (whole cells; the scene checks that they are nearly
+// cubic), and the flow box's top (m).
+std::array<int, 3> pour_flow_cells(const FunnelPour& p, const PourFlow& f);
 // Runs one seeded pour until every ball rests in the paste (checked every 1000 steps) or end_time.
 BallPourResult ball_pour(const FunnelPour& p, std::uint64_t seed);
 
