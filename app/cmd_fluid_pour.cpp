@@ -113,6 +113,11 @@ void pour_seed(const validation::FunnelPour& p, int k, PourTally& t) {
   fmt::print("{:>5} {:>9.2f} {:>9.2f} {:>10} {:>9} {:>9.3f} {:>9.3f} {:>8.3f} {:>7} {:>7.1f} {:>7.1f}\n", k, 100 * b.z_min,
              100 * b.z_max, b.at_rest, b.in_funnel, b.first_out, b.last_out, b.t_end, b.ids_ok ? "ok" : "LOST",
              wall, cpu);
+  if (p.flow)
+    fmt::print("      flow: {} cycles, {} steps, {} pressure and {} viscous iterations, {:.1f} s in the flow solver; "
+               "surface {:.2f} mm\n",
+               b.flow_cycles, b.flow_steps, b.pressure_iterations, b.viscous_iterations, b.flow_seconds,
+               1e3 * b.surface);
   std::fflush(stdout);
 }
 

@@ -134,6 +134,9 @@ const FluidRegion& FlowCoupling::region() const { return s_->region; }
 const flow::FlowSolver& FlowCoupling::solver() const { return s_->solver; }
 double FlowCoupling::paste_volume() const { return s_->solver.paste_volume(); }
 long FlowCoupling::flow_steps() const { return s_->solver.totals().steps; }
+long FlowCoupling::pressure_iterations() const { return s_->solver.totals().pressure_iterations; }
+long FlowCoupling::viscous_iterations() const { return s_->solver.totals().viscous_iterations; }
+double FlowCoupling::solver_seconds() const { return s_->solver.totals().seconds; }
 double FlowCoupling::solver_time() const { return s_->solver.time(); }
 
 void FlowCoupling::start(const Particles& p) {

@@ -111,6 +111,10 @@ class FlowCoupling {
   double paste_volume() const;  // m3
   long cycles() const { return cycles_; }
   long flow_steps() const;    // the flow solver's steps so far
+  // The flow solver's cost so far: its linear solves' iterations, and its wall time (s).
+  long pressure_iterations() const;
+  long viscous_iterations() const;
+  double solver_seconds() const;
   double solver_time() const;  // s, the flow's time (the last cycle's end)
 
  private:

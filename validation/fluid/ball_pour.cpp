@@ -210,7 +210,12 @@ BallPourResult ball_pour(const FunnelPour& p, std::uint64_t seed) {
   b.ids_ok = static_cast<int>(ids.size()) == p.balls;
   for (std::size_t k = 0; k < ids.size() && b.ids_ok; ++k) b.ids_ok = ids[k] == static_cast<std::int64_t>(k);
   b.surface = p.flow ? st.surface : w.fluid()->surface_z(0);
-  if (p.flow) b.flow_cycles = w.flow()->cycles();
+  if (p.flow) {
+    const auto& f = *w.flow();
+    b.flow_cycles = f.cycles(), b.flow_steps = f.flow_steps();
+    b.pressure_iterations = f.pressure_iterations(), b.viscous_iterations = f.viscous_iterations();
+    b.flow_seconds = f.solver_seconds();
+  }
   return b;
 }
 

@@ -81,7 +81,9 @@ struct BallPourResult {
   double t_end = 0.0;     // s simulated
   double dt = 0.0;        // s
   long steps = 0;
-  long flow_cycles = 0;   // with flow: coupling cycles run
+  long flow_cycles = 0;   // with flow: coupling cycles run, the flow's steps, its linear solves' iterations and
+  long flow_steps = 0, pressure_iterations = 0, viscous_iterations = 0;  // its wall time (s): the cost's share
+  double flow_seconds = 0.0;
   bool ids_ok = false;
 };
 
