@@ -40,8 +40,10 @@ LatticeStokes::LatticeStokes(int n, int reach, bool free_space) : reach_(reach) 
           for (int rz = 0; rz <= reach; ++rz) plane[ry * R1 + rz] += fy * cs[jz * R1 + rz];
         }
       }
-    for (int rx = 0; rx <= reach; ++rx)
-      for (std::size_t i = 0; i < plane.size(); ++i) table_[rx * plane.size() + i] += mult[jx] * cs[jx * R1 + rx] * plane[i];
+    for (int rx = 0; rx <= reach; ++rx) {
+      const double fx = mult[jx] * cs[jx * R1 + rx];
+      for (std::size_t i = 0; i < plane.size(); ++i) table_[rx * plane.size() + i] += fx * plane[i];
+    }
   }
   const double image = free_space ? kHasimotoSelf / (6.0 * std::numbers::pi * n) : 0.0;
   for (double& v : table_) v = v / (static_cast<double>(n) * n * n) + image;
@@ -56,7 +58,8 @@ std::array<std::size_t, 3> LatticeStokes::strides(int c) const {
 double LatticeStokes::component(int c, const std::array<int, 3>& r) const {
   const int x = std::abs(r[0]), y = std::abs(r[1]), z = std::abs(r[2]);
   if (x > reach_ || y > reach_ || z > reach_)
-    throw std::invalid_argument(fmt::format("coupling: lattice offset ({}, {}, {}) beyond the reach {}", r[0], r[1], r[2], reach_));
+    throw std::invalid_argument(
+        fmt::format("coupling: lattice offset ({}, {}, {}) beyond the reach {}", r[0], r[1], r[2], reach_));
   // G_yy(x, y, z) = G_xx(y, x, z), G_zz(x, y, z) = G_xx(z, y, x).
   return c == 0 ? xx(x, y, z) : (c == 1 ? xx(y, x, z) : xx(z, y, x));
 }

@@ -60,7 +60,10 @@ class LatticeStokes {
   std::array<std::size_t, 3> strides(int c) const;
 
  private:
-  double xx(int rx, int ry, int rz) const { return table_[(static_cast<std::size_t>(rx) * (reach_ + 1) + ry) * (reach_ + 1) + rz]; }
+  double xx(int rx, int ry, int rz) const {
+    const std::size_t r1 = reach_ + 1;
+    return table_[(rx * r1 + ry) * r1 + rz];
+  }
   int reach_;
   std::vector<double> table_;
 };
