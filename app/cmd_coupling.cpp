@@ -5,6 +5,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
 #include <omp.h>
@@ -33,10 +34,12 @@ void print_sphere(const SphereSettings& s, const SphereResult& r) {
                r.max_speed_late, 1e3 * r.travel, 0.5 * r.cycles * s.coupling_interval, r.cells, r.cycles, r.seconds);
     return;
   }
-  fmt::print("sphere h/d {:g}, L/d {:g}, disturbance correction {}: slip {:.5g} m/s [{:.5g}, {:.5g}] against "
-             "Hasimoto {:.5g} (Stokes {:.5g}): error {:+.2f} %, resolved pressure force {:+.2f} % of the drag, Re {:.3g}, "
-             "{} cells, {} cycles, {:.2f} s\n",
-             s.cell_over_diameter, s.box_over_diameter, s.disturbance ? "on" : "off", r.velocity, r.slip_min,
+  const double cells = s.box_over_diameter / s.cell_over_diameter;
+  fmt::print("sphere h/d {:g}, L/d {:g}, start x y {:.4g} {:.4g} cells, disturbance correction {}: slip {:.5g} m/s "
+             "[{:.5g}, {:.5g}] against Hasimoto {:.5g} (Stokes {:.5g}): error {:+.2f} %, resolved pressure force {:+.2f} % "
+             "of the drag, Re {:.3g}, {} cells, {} cycles, {:.2f} s\n",
+             s.cell_over_diameter, s.box_over_diameter, s.start[0] * cells, s.start[1] * cells,
+             s.disturbance ? "on" : "off", r.velocity, r.slip_min,
              r.slip_max, r.reference, r.stokes, 100.0 * r.error, 100.0 * r.pressure_share, r.reynolds, r.cells,
              r.cycles, r.seconds);
 }
@@ -145,7 +148,8 @@ void register_coupling_commands(CLI::App& app) {
 
   struct Opts {
     SphereSettings sphere;
-    bool only_without = false, toy = false;
+    bool only_without = false, only_with = false, toy = false;
+    std::vector<double> start;  // cells
     double cell = 0.01;
   };
   auto o = std::make_shared<Opts>();
@@ -160,11 +164,18 @@ void register_coupling_commands(CLI::App& app) {
   sph->add_option("--interval", o->sphere.coupling_interval, "coupling interval, s (default 0.005)")
       ->check(CLI::PositiveNumber);
   sph->add_flag("--without-correction", o->only_without, "only the run without the disturbance correction");
+  sph->add_flag("--with-correction-only", o->only_with, "only the run with the disturbance correction");
+  sph->add_option("--start", o->start, "the sphere's start x y in cells (default 0.37 and 0.41 of the box)")
+      ->expected(2);
   sph->callback([o] {
     SphereSettings s = o->sphere;
     s.disturbance = !o->only_without;
+    if (o->start.size() == 2) {
+      const double cells = s.box_over_diameter / s.cell_over_diameter;
+      s.start[0] = o->start[0] / cells, s.start[1] = o->start[1] / cells;
+    }
     print_sphere(s, sphere_or_input_error(s));
-    if (s.yield_number == 0.0 && s.disturbance) {
+    if (s.yield_number == 0.0 && s.disturbance && !o->only_with) {
       s.disturbance = false;
       print_sphere(s, sphere_or_input_error(s));
     }

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "base/error.h"
+#include "model/coupling/mobility.h"
 
 namespace pastemix::coupling {
 
@@ -101,9 +102,13 @@ CoupledFlow::Start CoupledFlow::drag_at_start(const CoupledParticles& p) const {
     const double eps = std::min(1.0, seen + own_solid_fraction(g, s, p.d[i]));
     const double mu = interpolate(g, s, flow_.viscosity());
     const Vec& u = s0.u[i];
-    const double slip = std::hypot(p.v[i][0] - u[0], p.v[i][1] - u[1], p.v[i][2] - u[2]);
+    const Vec w{p.v[i][0] - u[0], p.v[i][1] - u[1], p.v[i][2] - u[2]};
+    const double slip = std::hypot(w[0], w[1], w[2]);
     const double k = own_pressure_share(g, s, p.d[i]);
-    const DragCoefficients dc = drag_coefficients(p.drag[i], p.d[i], s_.width_factor, slip, eps, mu, g.h, s_.closure, k);
+    // g0 at the particle's place, along its slip (mobility.h); the place-averaged table where it does not apply.
+    const std::optional<double> g0 =
+        s_.closure.disturbance ? std::optional(disturbance_mobility(g, s, p.d[i], s_.width_factor, mu, w)) : std::nullopt;
+    const DragCoefficients dc = drag_coefficients(p.drag[i], p.d[i], s_.width_factor, slip, eps, mu, g.h, s_.closure, k, g0);
     s0.beta[i] = s0.share[i] * dc.beta;
     if (s_.closure.disturbance && pending_interval_ > 0.0 && s0.beta[i] > 0.0) {
       // The particle's own hole in the fluid's body and pressure forces (coupled_flow.h), induced at it with

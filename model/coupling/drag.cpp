@@ -130,7 +130,7 @@ double own_pressure_share(const flow::Grid& g, const Stencil& s, double diameter
 
 DragCoefficients drag_coefficients(const SphereDrag& law, double diameter, double width_factor, double slip, double eps,
                                    double viscosity, const std::array<double, 3>& cell, const DragClosure& closure,
-                                   double own_pressure) {
+                                   double own_pressure, std::optional<double> mobility) {
   if (!(slip >= 0.0) || !std::isfinite(slip) || !(eps > 0.0) || !std::isfinite(eps) || !(law.rest >= 0.0) ||
       !(law.rest_speed >= 0.0 && law.rest_speed < 0.5 * kSlopeSpeed) || !(own_pressure >= 0.0) ||
       !std::isfinite(own_pressure))
@@ -156,7 +156,9 @@ DragCoefficients drag_coefficients(const SphereDrag& law, double diameter, doubl
     // wider than the sphere (the grid would then resolve it). Held at 0.9 (a factor 10), for kernels near
     // the minimum width on cells much smaller than the sphere. The disturbance's own pressure adds k F_p
     // (drag.h): F_p (1 + k) = beta (u_f + g0 F_p - v).
-    const double g0 = self_mobility(diameter, width_factor, cell, viscosity);
+    const double g0 = mobility ? *mobility : self_mobility(diameter, width_factor, cell, viscosity);
+    if (!(g0 > 0.0) || !std::isfinite(g0))
+      throw std::invalid_argument(fmt::format("coupling drag: self-mobility {} m/(N s) is not positive and finite", g0));
     const bool held = beta * g0 >= 0.9;
     beta /= 1.0 + own_pressure - (held ? 0.9 : beta * g0);
     return {beta, law.rest, held ? 0.0 : g0};

@@ -12,6 +12,7 @@
 #include "model/coupling/drag.h"
 #include "model/coupling/exchange.h"
 #include "model/coupling/kernel.h"
+#include "model/coupling/mobility.h"
 
 namespace pastemix::coupling {
 
@@ -35,10 +36,12 @@ Parts parts(const CoupledFlow& cf, const CoupledParticles& p, const Exchange& ex
     q.pressure += cf.pending_impulse()[i][2] / interval;
     const Stencil st = stencil(g, p.x[i], p.d[i], cs.width_factor);
     const double e = std::min(1.0, interpolate(g, st, eps_f) + own_solid_fraction(g, st, p.d[i]));
-    const double slip = std::hypot(p.v[i][0] - at[i][0], p.v[i][1] - at[i][1], p.v[i][2] - at[i][2]);
+    const std::array<double, 3> w{p.v[i][0] - at[i][0], p.v[i][1] - at[i][1], p.v[i][2] - at[i][2]};
+    const double slip = std::hypot(w[0], w[1], w[2]);
     const double mu = interpolate(g, st, cf.flow().viscosity());
     q.beta += drag_coefficients(law, p.d[i], cs.width_factor, slip, e, mu, g.h, cs.closure,
-                                own_pressure_share(g, st, p.d[i])).beta;
+                                own_pressure_share(g, st, p.d[i]),
+                                disturbance_mobility(g, st, p.d[i], cs.width_factor, mu, w)).beta;
   }
   const double n = static_cast<double>(p.size());
   return {q.fluid / n, q.beta / n, q.pressure / n};

@@ -133,6 +133,12 @@ TEST_CASE("coupling drag: the correction's mobility (for the own hole) is g0, an
   CHECK(air_side.beta == doctest::Approx(beta / (1.0 - 0.9)).epsilon(1e-9));
   CHECK(air_side.mobility == 0.0);
   CHECK(coupling::drag_coefficients(law, d, c, 0.01, 1.0, mu, {h, h, h}, DragClosure{false, false}, 0.0).mobility == 0.0);
+  // A g0 handed in (mobility.h: the place's own) replaces the table, in the correction and for the hole.
+  const double g_place = 1.3 * coupling::self_mobility(d, c, {h, h, h}, mu);
+  const auto placed = coupling::drag_coefficients(law, d, c, 0.01, 1.0, mu, {h, h, h}, on, 0.01, g_place);
+  CHECK(placed.beta == doctest::Approx(beta / (1.01 - beta * g_place)).epsilon(1e-9));
+  CHECK(placed.mobility == g_place);
+  CHECK_THROWS_AS(coupling::drag_coefficients(law, d, c, 0.01, 1.0, mu, {h, h, h}, on, 0.0, -1.0), std::invalid_argument);
 }
 
 TEST_CASE("coupling drag: the disturbance's own pressure share tends to V_p int K^2 / 3 on fine cells") {
