@@ -106,6 +106,14 @@ Ledger::Ledger(std::filesystem::path path) : path_(std::move(path)) {
   if (path_.empty() || !std::filesystem::exists(path_, ec)) return;
   drop_torn_tail(path_);
   if (std::filesystem::file_size(path_) == 0) return;
+  {  // A ledger whose rows were all taken out (to rerun them) is its header alone: no finished task.
+    std::ifstream in(path_);
+    std::stringstream text;
+    text << in.rdbuf();
+    std::string body = text.str();
+    while (!body.empty() && (body.back() == '\n' || body.back() == '\r')) body.pop_back();
+    if (body == kHeader) return;
+  }
   const CsvTable t = CsvTable::read(path_);
   t.require_columns({"key", "study", "task", "status", "qoi", "wall_s", "particle_steps", "particles", "engine", "failure"});
   t.require_only_columns({"key", "study", "task", "status", "qoi", "wall_s", "particle_steps", "particles", "engine", "failure"});

@@ -79,6 +79,22 @@ TEST_CASE("ledger: rows read back every bit, failures with their reason, a key a
   CHECK_FALSE(back.find("0000000000000000"));
 }
 
+TEST_CASE("ledger: its header alone (every row taken out to be rerun) is an empty ledger that takes new rows") {
+  const fs::path p = fresh("header_only") / "study.csv";
+  std::ofstream(p) << kHeader << "\n";
+  RunRecord done;
+  done.qoi = {1.25};
+  done.engine = std::string("e");
+  {
+    Ledger l(p);
+    CHECK(l.size() == 0);
+    l.append("0123456789abcdef", "sweep dt repose_angle", "dt = 1e-05 seed 1", done);
+  }
+  CHECK(slurp(p) == std::string(kHeader) + "\n0123456789abcdef,sweep dt repose_angle,dt = 1e-05 seed 1,done,1.25,0,0,0,e,\n");
+  const Ledger back(p);
+  CHECK(back.size() == 1);
+}
+
 TEST_CASE("ledger: a bad row is an error naming file, line and column, and a torn last line is dropped") {
   const fs::path d = fresh("bad");
   const std::string good = "0123456789abcdef,s,t,done,1.5,1,2,3,e,\n";
