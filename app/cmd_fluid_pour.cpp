@@ -115,9 +115,9 @@ void pour_seed(const validation::FunnelPour& p, int k, PourTally& t) {
              wall, cpu);
   if (p.flow)
     fmt::print("      flow: {} cycles, {} steps, {} pressure and {} viscous iterations, {:.1f} s in the flow solver; "
-               "surface {:.2f} mm\n",
+               "surface {:.2f} mm; fastest ball {:.3g} m/s\n",
                b.flow_cycles, b.flow_steps, b.pressure_iterations, b.viscous_iterations, b.flow_seconds,
-               1e3 * b.surface);
+               1e3 * b.surface, b.max_speed);
   std::fflush(stdout);
 }
 

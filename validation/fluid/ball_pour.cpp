@@ -202,6 +202,7 @@ BallPourResult ball_pour(const FunnelPour& p, std::uint64_t seed) {
       ++b.in_funnel;  // still in (or partly in) the funnel
       continue;
     }
+    b.max_speed = std::max(b.max_speed, std::sqrt(norm2(pt.v[a])));
     b.z_min = std::min(b.z_min, pt.x[a].z);
     b.z_max = std::max(b.z_max, pt.x[a].z);
   }

@@ -84,6 +84,7 @@ struct BallPourResult {
   long flow_cycles = 0;   // with flow: coupling cycles run, the flow's steps, its linear solves' iterations and
   long flow_steps = 0, pressure_iterations = 0, viscous_iterations = 0;  // its wall time (s): the cost's share
   double flow_seconds = 0.0;
+  double max_speed = 0.0;  // m/s, the fastest ball at the end (out of the funnel)
   bool ids_ok = false;
 };
 
