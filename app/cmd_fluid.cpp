@@ -169,10 +169,14 @@ void print_flow_ball_table(const SteelBallPaste& p, double eta, double cell, con
       used = b.cell;
       fmt::print(" {:>9}", fmt::format("{:.2f}{}", 1e3 * b.drop.distance,
                                        b.drop.reached_bottom ? "*" : (b.at_rest ? "" : "~")));
+      const auto& J = b.split;
       cost += fmt::format("  {:.1f} mm from {:.0f} mm: {:.2f} s to rest, end speed {:.3g} mm/s, {} flow intervals, "
-                          "{:.1f} s wall{}\n",
+                          "{:.1f} s wall{}; impulses from the entry (mN s, up +): m dv {:.3f} = gravity {:.3f} + "
+                          "pressure {:.3f} (hydrostatic {:.3f}, the rest {:.3f}) + drag {:.3f}\n",
                           1e3 * d, 1e3 * h, b.drop.time_to_rest, 1e3 * b.speed_end, b.cycles, b.seconds,
-                          b.at_rest || b.drop.reached_bottom ? "" : " (NOT at rest)");
+                          b.at_rest || b.drop.reached_bottom ? "" : " (NOT at rest)", 1e3 * J.momentum,
+                          1e3 * J.gravity, 1e3 * J.pressure, 1e3 * J.hydrostatic, 1e3 * (J.pressure - J.hydrostatic),
+                          1e3 * J.drag);
     }
     fmt::print("   {:.3g}\n", used / d);
   }

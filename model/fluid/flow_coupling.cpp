@@ -212,6 +212,14 @@ Vec3 FlowCoupling::kick(long a, const Vec3& v, const Vec3& F, double, double h) 
   return {out[0], out[1], out[2]};
 }
 
+Vec3 FlowCoupling::pressure_force(long a) const {
+  const std::size_t i = static_cast<std::size_t>(a);
+  if (!started_ || i >= member_.size() || !member_[i]) return {0.0, 0.0, 0.0};
+  const Vec& pending = s_->coupled.pending_impulse()[i];
+  const double T = s_->interval();
+  return {pending[0] / T, pending[1] / T, pending[2] / T};
+}
+
 void FlowCoupling::renumber(const std::vector<std::uint32_t>& map, std::size_t count) {
   if (!started_) return;
   auto& cp = s_->p;

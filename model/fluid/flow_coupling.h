@@ -94,6 +94,10 @@ class FlowCoupling {
   long membership() const { return membership_; }
   // The half kick h (s) of member a under F (N: contacts + m g): the paste's drag and pending pressure force.
   Vec3 kick(long a, const Vec3& v, const Vec3& F, double mass, double h) const;
+  // N: the pressure force the kick hands member a in this cycle (model A's -V_p grad p with the hydrostatic
+  // part, the pending impulse over the cycle); 0 for a non-member or before the first cycle. For diagnostics
+  // (validation/fluid/steel_ball_flow.h: the force split of a settling ball).
+  Vec3 pressure_force(long a) const;
 
   // The whole dynamic state as bytes (model/checkpoint.cpp), and back: the flow solver's fields, the coupling's
   // pending impulses, the cycle's drag and impulses, the members. restore() takes the World's particles as

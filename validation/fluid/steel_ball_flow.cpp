@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "validation/fluid/steel_ball_flow.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -43,11 +44,20 @@ FlowBallDrop steel_ball_drop_flow(const SteelBallPaste& p, double d, double heig
   const Scene scene = parse_scene(flow_ball_scene(r, end, out.cell, f), "steel_ball_flow.toml");
   World w = make_world(scene);
   const long steps = std::lround(end / r.dt), rest_steps = std::lround(f.rest_time / r.dt);
-  const double rad = 0.5 * d;
+  const double rad = 0.5 * d, volume = units::pi * d * d * d / 6.0;
   long slow = 0;
+  bool entered = false;
+  double v_entry = 0.0, t_entry = 0.0;
+  auto& J = out.split;
   for (long k = 0; k < steps; ++k) {
     w.step();
     const auto& q = w.particles();
+    if (!entered && q.x[0].z - rad < r.depth) entered = true, v_entry = q.v[0].z, t_entry = w.time();
+    if (entered) {
+      const double below = std::clamp(r.depth - (q.x[0].z - rad), 0.0, d);  // m, the cap's height
+      J.pressure += w.flow()->pressure_force(0).z * r.dt;
+      J.hydrostatic += p.rho_paste * kG * units::pi * below * below * (3.0 * rad - below) / 3.0 * r.dt;
+    }
     if (q.x[0].z < rad + 1e-3) {
       out.drop.reached_bottom = true;
       break;
@@ -65,6 +75,12 @@ FlowBallDrop steel_ball_drop_flow(const SteelBallPaste& p, double d, double heig
   out.drop.time_to_rest = w.time() - (out.at_rest ? f.rest_time : 0.0);
   out.speed_end = std::sqrt(norm2(q.v[0]));
   out.cycles = w.flow()->cycles();
+  if (entered) {
+    const double m = p.rho_ball * volume;
+    J.momentum = m * (q.v[0].z - v_entry);
+    J.gravity = -m * kG * (w.time() - t_entry);
+    J.drag = J.momentum - J.gravity - J.pressure;
+  }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
 }

@@ -29,6 +29,20 @@ struct FlowBallSettings {
   double settle = 3.0;           // s after the fall (the at-rest balls stop within ~0.3 s)
 };
 
+// The vertical impulses (N s, upward positive) on the ball from its entry (its bottom at the initial surface)
+// to the end: its velocity change times its mass = gravity + pressure + drag. The pressure is what the flow
+// hands it (model A's -V_p grad p: buoyancy and the displaced paste's dynamic pressure together); hydrostatic
+// is rho_f g times its volume below the initial surface (a spherical cap: the at-rest model's buoyancy, less its
+// surface rise of ~0.24 mm for the 12.6 mm ball); drag = m dv + m g t - pressure (the drag law's velocity and
+// yield parts; no contact touches a ball that rests suspended).
+struct ImpulseSplit {
+  double momentum = 0.0;     // m (v_end - v_entry)
+  double gravity = 0.0;      // -m g t
+  double pressure = 0.0;     // sum of F_p dt
+  double hydrostatic = 0.0;  // sum of rho_f g V_sub dt
+  double drag = 0.0;         // the rest
+};
+
 struct FlowBallDrop {
   BallDrop drop;             // distance (m, initial surface to the ball's bottom), time to rest, reached bottom
   bool at_rest = false;      // false: still moving at the end (speed_end)
@@ -36,6 +50,7 @@ struct FlowBallDrop {
   double cell = 0.0;         // m, the cell used
   long cycles = 0;           // flow intervals
   double seconds = 0.0;      // wall time
+  ImpulseSplit split;        // from the entry into the paste to the end
 };
 
 FlowBallDrop steel_ball_drop_flow(const SteelBallPaste& paste, double d, double height, double eta_B,
