@@ -25,6 +25,13 @@ TEST_CASE("steel balls with flow: the 12.6 mm ball from 255 mm rests suspended w
   CHECK(b.cell == doctest::Approx(0.0132939).epsilon(1e-4));
   CHECK(b.drop.distance > 0.8 * at_rest);
   CHECK(b.drop.distance < 1.0 * at_rest);
+  // The force split (VALIDATION.md section 8): the flow's pressure holds the buoyancy (2.88 mN s) and a
+  // non-hydrostatic part of 23 % of the entering momentum (4.28 of 18.36 mN s), which the at-rest model lacks.
+  const auto& J = b.split;
+  CHECK(J.momentum == doctest::Approx(J.gravity + J.pressure + J.drag).epsilon(1e-12));
+  CHECK(J.hydrostatic == doctest::Approx(2.88e-3).epsilon(0.05));
+  CHECK((J.pressure - J.hydrostatic) / J.momentum > 0.15);
+  CHECK((J.pressure - J.hydrostatic) / J.momentum < 0.35);
   // Half the plastic viscosity: a deeper rest (the drag's velocity term is most of the resistance at impact).
   const FlowBallDrop thin = steel_ball_drop_flow(p, 0.0126, 0.255, 0.35, f);
   CHECK(thin.at_rest);
