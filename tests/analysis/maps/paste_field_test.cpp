@@ -172,6 +172,20 @@ TEST_CASE("paste field: without fluid_surface_z the field gives the surface, and
   CHECK(mixing_inputs(o, BlockLayout{}).surface_z == 0.095);
 }
 
+TEST_CASE("paste field: a paste fraction a little outside [0, 1] (the coupled advection's defect) is clamped and named") {
+  test::ScratchDir dir("pf_clamp");
+  test::ResultSpec s = field_spec(some_rocks());
+  s.flow_alpha[static_cast<std::size_t>(11 * 12 + 5)] = -0.0104;  // an air cell: as case 3's rock pile left one
+  s.flow_alpha[static_cast<std::size_t>(2 * 12 + 1)] = 1.0 + 5e-5;  // round-off: clamped silently
+  const ResultSnapshot r = read(s, dir, "clamp.h5");
+  REQUIRE(r.paste_field);
+  CHECK(r.paste_field->alpha[11 * 12 + 5] == 0.0);
+  CHECK(r.paste_field->alpha[2 * 12 + 1] == 1.0);
+  CHECK(r.paste_field->source.find("clamped to [0, 1] in 1 cell(s), by up to 0.0104") != std::string::npos);
+  const ResultSnapshot clean = read(field_spec(some_rocks()), dir, "clean.h5");
+  CHECK(map_of(r, true).C == map_of(clean, true).C);  // an air cell's clamp leaves the map as it was
+}
+
 TEST_CASE("paste field: a bad field is an InputError naming the file and the dataset") {
   test::ScratchDir dir("pf_bad");
   auto fails_with = [&](test::ResultSpec s, const std::string& name, const std::string& what) {
@@ -192,6 +206,8 @@ TEST_CASE("paste field: a bad field is an InputError naming the file and the dat
   test::ResultSpec range = field_spec({});
   range.flow_alpha[5] = 1.5;
   fails_with(range, "range.h5", "not in [0, 1]");
+  range.flow_alpha[5] = -0.021;  // past the coupled advection's measured -0.0104
+  fails_with(range, "range2.h5", "not in [0, 1]");
   test::ResultSpec nan = field_spec({});
   nan.flow_alpha[7] = std::nan("");
   fails_with(nan, "nan.h5", "paste_fraction");
