@@ -206,10 +206,7 @@ void register_steel_balls(CLI::App* val) {
   balls->add_option("--offset", bo->offset, "release point's distance from the mould axis (mm), default 0");
   balls->add_option("--flow", bo->flow_cells, "also with dynamics = \"flow\" at these cell sizes (m; repeat)")
       ->check(CLI::PositiveNumber);
-  balls->add_option("--interval", bo->flow.coupling_interval, "with --flow: DEM steps per flow interval (default 50)")
-      ->check(CLI::PositiveNumber);
-  balls->add_option("--regularisation", bo->flow.regularisation, "with --flow: Papanastasiou's m, s (default 1000)")
-      ->check(CLI::PositiveNumber);
+  add_flow_options(balls, bo->flow.coupling_interval, bo->flow.regularisation);
   balls->callback([bo] {
     const Paste paste = resolve_paste(bo->paste);
     SteelBallPaste p = steel_ball_paste(paste);

@@ -195,10 +195,7 @@ void register_pour(CLI::App* val) {
   cmd->add_option("--out", o->out, "folder for ball_pour.csv, ball_pour_maps.png, ball_pour_z.png");
   cmd->add_option("--flow", o->flow_cell, "the paste with dynamics = \"flow\" at this cell size (m), e.g. 0.01")
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--interval", o->flow.coupling_interval, "with --flow: DEM steps per flow interval (default 50)")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--regularisation", o->flow.regularisation, "with --flow: Papanastasiou's m, s (default 1000)")
-      ->check(CLI::PositiveNumber);
+  add_flow_options(cmd, o->flow.coupling_interval, o->flow.regularisation);
   add_paste_options(cmd, o->paste);
   cmd->callback([o] { run_pour(*o); });
 }

@@ -10,6 +10,13 @@
 
 namespace pastemix::app {
 
+void add_flow_options(CLI::App* cmd, long& coupling_interval, double& regularisation) {
+  cmd->add_option("--interval", coupling_interval, "with --flow: DEM steps per flow interval (default 50)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--regularisation", regularisation, "with --flow: Papanastasiou's m, s (default 1000)")
+      ->check(CLI::PositiveNumber);
+}
+
 void add_paste_options(CLI::App* cmd, PasteOpts& o, bool with_eta) {
   cmd->add_option("--params", o.params,
                   fmt::format("lab parameter store (pastemix lab reduce), default {}", kDefaultParams));

@@ -34,6 +34,9 @@ struct Paste {
 };
 
 void add_paste_options(CLI::App* cmd, PasteOpts& o, bool with_eta = true);
+// The moving paste's options of a validation (--interval, --regularisation: dynamics = "flow"'s coupling interval
+// in DEM steps and Papanastasiou's m in s), both positive.
+void add_flow_options(CLI::App* cmd, long& coupling_interval, double& regularisation);
 // Throws InputError (exit 2) naming the path when the store is missing and a value is not given explicitly.
 Paste resolve_paste(const PasteOpts& o, bool need_eta = true);
 void print_paste(const Paste& p);
