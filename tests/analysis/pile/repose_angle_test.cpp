@@ -106,8 +106,9 @@ TEST_CASE("repose angle: debris beyond the pile's foot (spheres that bounced or 
 TEST_CASE("repose angle: a low pile in a single-layer apron of larger spheres (a drop's scatter) reads its own flank") {
   // A 22 deg cone of 4 mm spheres 6 cm in radius (2.4 cm high, like the 10.5 cm falling-height piles), in an
   // apron of one layer of 3.35-8 mm spheres lying on the floor from 6 to 17 cm out. The apron's tops (3.35-8 mm)
-  // fall inside the flank band (15-75 % of the height: 3.6-18 mm); taken as flank they read 2.2 deg here and 5.4 deg on the
-  // real pile (its radial profile: ~22 deg). The foot (two bins whose top sphere lies on the floor) ends them.
+  // fall inside the flank band (15-75 % of the height: 3.6-18 mm); taken as flank they read 2.2 deg here and
+  // 5.4 deg on the real pile (its radial profile: ~22 deg). The foot (two bins whose top sphere lies on the floor)
+  // ends them.
   std::vector<pastemix::Vec3> pos;
   std::vector<double> rad;
   cone_pile(22.0, 0.06, 0.004, pos, rad, 4);
