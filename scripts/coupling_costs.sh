@@ -17,7 +17,11 @@ one() {  # label, then the command's arguments
 echo "# coupling costs, $(date -u +%FT%TZ), $px at git $(git rev-parse --short HEAD 2>/dev/null), load $(cut -d' ' -f1-3 /proc/loadavg)"
 one "sphere Newtonian h/d 1" validate coupling sphere --cell-over-d 1 --box-over-d 8
 one "sphere Newtonian h/d 0.5" validate coupling sphere --cell-over-d 0.5 --box-over-d 8
+one "sphere Newtonian h/d 0.25" validate coupling sphere --cell-over-d 0.25 --box-over-d 8
 one "sphere Newtonian h/d 2 (L/d 24)" validate coupling sphere --cell-over-d 2 --box-over-d 24
+one "sphere h/d 2 (L/d 16) cell centre" validate coupling sphere --cell-over-d 2 --box-over-d 16 --start 3.5 3.5
+one "sphere h/d 2 (L/d 16) on faces" validate coupling sphere --cell-over-d 2 --box-over-d 16 --start 4 4
+one "sphere Newtonian h/d 4 (L/d 32)" validate coupling sphere --cell-over-d 4 --box-over-d 32
 one "sphere Bingham Y 0.08 (stops)" validate coupling sphere --yield-number 0.08
 one "sphere Bingham Y 0.03 (moves)" validate coupling sphere --yield-number 0.03
 one "piston (no DEM)" validate coupling piston
@@ -32,4 +36,8 @@ TAIL=6 one "steel balls flow 13.3 mm cells" validate steel-balls --curve publish
 if "$px" validate coupling --help 2>&1 | grep -qE '^ +raft '; then
   one "raft q = 3 (holds)" validate coupling raft --load 3
   one "raft q = 12 (punches in)" validate coupling raft --load 12
+  for k in 10 25; do  # the coupling interval near the capacity (Skempton's 5-9): below holds, above goes
+    one "raft q = 5, interval $k" validate coupling raft --load 5 --interval $k
+    one "raft q = 9, interval $k" validate coupling raft --load 9 --interval $k
+  done
 fi
