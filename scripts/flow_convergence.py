@@ -9,7 +9,12 @@ against the seed spread of the base (seeds 3, 4, 5): the mean over the blocks of
 layer's mass. A refinement "changes the map by less than the seed spread" when dC <= that mean sd and every
 layer's change is within its sd. No lab number is read: this is a model-to-model comparison, made before any
 flow score (the issue's order).
+
+Each run's maps are also kept as a small committed record, docs/studies/case3_flow/runs/NAME.csv (C and rock mass
+per block, the run's state and cost): the table is then made from the records alone, and study.sh skips a
+recorded run, so a replaced machine (the result files are 45 MB each, not in git) loses no finished run.
     /usr/bin/python3 scripts/flow_convergence.py [--pastemix build/pastemix] [--runs out/studies/case3_flow]
+        [--records docs/studies/case3_flow/runs]
 """
 import argparse
 import os
@@ -37,9 +42,48 @@ def maps_of(pm, run_dir, lab_h5):
         state = f.attrs["state"]
     with h5py.File(os.path.join(run_dir, "mixing_case3.h5")) as r:
         wall = r["/profile"].attrs["wall_seconds"]
-        flow = r["/flow"].attrs
-        cost = dict(flow_steps=int(flow["flow_steps"]), solver_s=float(flow.get("solver_seconds", float("nan"))))
-    return dict(C=C, layers=rock.sum(axis=(0, 1)), state=state, wall=wall, **cost)
+        if "flow" in r:  # the at-rest run (the cost ratio's denominator) has no flow
+            flow = r["/flow"].attrs
+            cost = dict(flow_steps=int(flow["flow_steps"]), solver_s=float(flow.get("solver_seconds", float("nan"))))
+        else:
+            cost = dict(flow_steps=0, solver_s=0.0)
+    return dict(C=C, rock=rock, layers=rock.sum(axis=(0, 1)), state=state, wall=wall, **cost)
+
+
+def write_record(path, name, r):
+    """The run's maps and cost as text: header lines '# key = value', then one row per block."""
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    tmp = path + ".tmp"
+    with open(tmp, "w") as f:
+        f.write(f"# case 3 with flow, run {name}: paste-field maps (pastemix maps --lab 3), layer 1 = top\n")
+        for key in ("state", "wall", "flow_steps", "solver_s"):
+            f.write(f"# {key} = {r[key]}\n")
+        f.write("i,j,k,C_percent,rock_g\n")
+        C, rock = r["C"], r["rock"]
+        for i in range(C.shape[0]):
+            for j in range(C.shape[1]):
+                for k in range(C.shape[2]):
+                    f.write(f"{i + 1},{j + 1},{k + 1},{C[i, j, k]!r},{rock[i, j, k]!r}\n")
+    os.replace(tmp, path)
+
+
+def read_record(path):
+    meta, rows = {}, []
+    with open(path) as f:
+        for line in f:
+            line = line.strip()
+            if line.startswith("#"):
+                if " = " in line:
+                    key, value = line[1:].split(" = ", 1)
+                    meta[key.strip()] = value.strip()
+            elif line and not line.startswith("i,"):
+                rows.append([float(v) for v in line.split(",")])
+    n = [int(max(r[d] for r in rows)) for d in range(3)]
+    C, rock = np.zeros(n), np.zeros(n)
+    for i, j, k, c, g in rows:
+        C[int(i) - 1, int(j) - 1, int(k) - 1], rock[int(i) - 1, int(j) - 1, int(k) - 1] = c, g
+    return dict(C=C, rock=rock, layers=rock.sum(axis=(0, 1)), state=meta["state"], wall=float(meta["wall"]),
+                flow_steps=int(meta["flow_steps"]), solver_s=float(meta["solver_s"]))
 
 
 def main():
@@ -47,9 +91,20 @@ def main():
     ap.add_argument("--pastemix", default="build/pastemix")
     ap.add_argument("--runs", default="out/studies/case3_flow")
     ap.add_argument("--lab-h5", default="out/lab/lab.h5")
+    ap.add_argument("--records", default="docs/studies/case3_flow/runs")
     a = ap.parse_args()
-    names = sorted(n for n in os.listdir(a.runs) if os.path.exists(os.path.join(a.runs, n, "done")))
-    m = {n: maps_of(a.pastemix, os.path.join(a.runs, n), a.lab_h5) for n in names}
+    done = set(n for n in (os.listdir(a.runs) if os.path.isdir(a.runs) else [])
+               if os.path.exists(os.path.join(a.runs, n, "done")))
+    recorded = set(f[:-4] for f in (os.listdir(a.records) if os.path.isdir(a.records) else []) if f.endswith(".csv"))
+    names = sorted(done | recorded)
+    m = {}
+    for n in names:
+        record = os.path.join(a.records, n + ".csv")
+        if n in recorded:
+            m[n] = read_record(record)
+        else:
+            m[n] = maps_of(a.pastemix, os.path.join(a.runs, n), a.lab_h5)
+            write_record(record, n, m[n])
     print("case 3 with flow: runs (maps from the paste field; layers g, layer 1 = top)")
     print(f"{'run':>14} | {'state':>8} | {'layer 1':>8} {'layer 2':>8} {'layer 3':>8} | {'wall s':>7} | flow steps | flow solver s")
     for n in names:
@@ -67,10 +122,14 @@ def main():
               + " / ".join(f"{v:.1f}" for v in sd_L) + " g")
     if "base_s3" not in m:
         return 0
+    if "at_rest_s3" in m:  # the acceptance's cost: flow at ~1 cm cells against at rest, same step, one thread each
+        print(f"cost: base_s3 / at_rest_s3 wall {m['base_s3']['wall']:.0f} / {m['at_rest_s3']['wall']:.0f} s = "
+              f"{m['base_s3']['wall'] / m['at_rest_s3']['wall']:.2f} (the machine's load during each is not recorded: "
+              "a ratio from runs at different loads is noisy)")
     base = m["base_s3"]
     print(f"\n{'refinement':>14} | {'mean |dC| %':>11} | {'d layer 1':>9} {'d layer 2':>9} {'d layer 3':>9} | within the seed spread")
     for n in names:
-        if n.startswith("base"):
+        if n.startswith("base") or n.startswith("at_rest"):
             continue
         r = m[n]
         dC = float(np.mean(np.abs(r["C"] - base["C"])))

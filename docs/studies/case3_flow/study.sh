@@ -4,7 +4,8 @@
 # rule (an at-rest model) is replaced by the flow keys of the base setting below; each variant refines one of
 # them. Every run: the issue-15 band overrides (time step 2e-5 s, 10 s safety limit), one thread, the scene's
 # seed 3 and the next two where stated. Finished runs (a `done` marker) are never rerun; a killed run restarts
-# from its start. Then `maps` of each run (the paste-field maps, analysis/maps/paste_field.h) and
+# from its start; a run recorded in docs/studies/case3_flow/runs/ (committed) is never rerun either.
+# Then `maps` of each run (the paste-field maps, analysis/maps/paste_field.h) and
 # scripts/flow_convergence.py tabulate the map change of each refinement against the seed spread of the base.
 #   PASTEMIX=/path/to/pastemix docs/studies/case3_flow/study.sh [RUN ...]   (default: every run, in order)
 set -u
@@ -29,6 +30,8 @@ for r in "${runs[@]}"; do
   if ((${#want[@]})) && [[ ! " ${want[*]} " == *" $name "* ]]; then continue; fi
   d=$out/$name
   [[ -f $d/done ]] && { echo "$name: done (kept)"; continue; }
+  # recorded in git by scripts/flow_convergence.py (its maps and cost): finished on some machine, never rerun
+  [[ -f $here/runs/$name.csv ]] && { echo "$name: recorded in $here/runs (kept)"; continue; }
   mkdir -p "$d"
   if [[ $keys == at_rest ]]; then  # the scene as shipped: the cost ratio's denominator, same step and thread
     cp datasets/scenes/mixing_case3.toml "$d/mixing_case3.toml"
