@@ -37,7 +37,7 @@ def maps_of(pm, run_dir, lab_h5):
         if done.returncode != 0:
             raise SystemExit(f"flow_convergence: {' '.join(cmd)} failed:\n{done.stdout}{done.stderr}")
     with h5py.File(maps) as f:
-        C = np.array(f["blocks/C"])  # (i, j, k)
+        C = 100.0 * np.array(f["blocks/C"])  # (i, j, k), % (the file holds fractions: analysis/maps/maps_h5.h)
         rock = np.array(f["blocks/rock_mass_kg"]) * 1e3  # g
         state = f.attrs["state"]
     with h5py.File(os.path.join(run_dir, "mixing_case3.h5")) as r:
