@@ -131,30 +131,29 @@ CoupledFlow::Start CoupledFlow::drag_at_start(const CoupledParticles& p) const {
   return s0;
 }
 
-bool CoupledFlow::drag_step(const CoupledParticles& p, std::size_t i, Vec& v, const Vec& F, double dt, const Start& s0,
-                            Vec& J) const {
-  // u_p less the particle's own displaced fluid's part (s0.shift, coupled_flow.h; 0 without the correction).
-  const Vec u{s0.u[i][0] + s0.shift[i][0], s0.u[i][1] + s0.shift[i][1], s0.u[i][2] + s0.shift[i][2]};
-  const double a = s0.beta[i] * dt / p.m[i];
+bool CoupledFlow::drag_update(const StepRecord& r, Vec& v, const Vec& F, double dt, Vec& J) {
+  // r.u: u_p less the particle's own displaced fluid's part (s0.shift, coupled_flow.h; 0 without the correction).
+  const Vec& u = r.u;
+  const double a = r.beta * dt / r.mass;
   for (int c = 0; c < 3; ++c) {
-    const double free = v[c] + F[c] / p.m[i] * dt;
+    const double free = v[c] + F[c] / r.mass * dt;
     const double next = (free + a * u[c]) / (1.0 + a);
-    J[c] += p.m[i] * (next - free);
+    J[c] += r.mass * (next - free);
     v[c] = next;
   }
   // The yield part in the same update (as fluid/drag_kick.h): it removes at most F_y dt / (1 + a) of momentum
   // from the slip the linear part left, so that the terminal slip is (F - F_y) / beta and a particle sticks
   // exactly when its other forces are below F_y.
-  const double bound = s0.share[i] * p.drag[i].rest * dt / (1.0 + a);  // N s
+  const double bound = r.yield * dt / (1.0 + a);  // N s
   const Vec w{v[0] - u[0], v[1] - u[1], v[2] - u[2]};
   const double speed = std::hypot(w[0], w[1], w[2]);
   if (!(bound > 0.0 && speed > 0.0)) return false;
-  const bool stick = p.m[i] * speed <= bound;
-  const double scale = stick ? p.m[i] : bound / speed;
+  const bool stick = r.mass * speed <= bound;
+  const double scale = stick ? r.mass : bound / speed;
   for (int c = 0; c < 3; ++c) {
     const double Jc = -scale * w[c];
     J[c] += Jc;
-    v[c] += Jc / p.m[i];
+    v[c] += Jc / r.mass;
   }
   return stick;
 }

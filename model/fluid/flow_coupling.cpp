@@ -104,6 +104,21 @@ struct FlowCoupling::State {
   coupling::CoupledFlow::Start start;
   std::vector<Vec> impulse;  // N s per particle: the cycle's summed drag impulses (J_sub)
   coupling::CycleStats last;
+  // Per particle, what its kicks read in this cycle (fixed from the cycle's start to its end): the drag's record
+  // and the pending pressure impulse over the interval (N). Rebuilt wherever start, the pending impulses or the
+  // numbering change (begin_cycle, renumber, restore); never saved (it follows from what is).
+  std::vector<coupling::CoupledFlow::StepRecord> record;
+  std::vector<Vec> pressure;
+  void gather() {
+    const std::size_t n = p.m.size();
+    const auto& pending = coupled.pending_impulse();
+    const double T = interval();
+    record.resize(n), pressure.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      record[i] = coupled.step_record(p, i, start);
+      pressure[i] = {pending[i][0] / T, pending[i][1] / T, pending[i][2] / T};
+    }
+  }
 
   State(FluidRegion r, double step, const Vec3& g)
       : region(std::move(r)), dt(step), gravity(g),
@@ -158,6 +173,7 @@ void FlowCoupling::begin_cycle(const Particles& p) {
   for (std::size_t a = 0; a < n; ++a) cp.x[a] = {p.x[a].x, p.x[a].y, p.x[a].z}, cp.v[a] = {p.v[a].x, p.v[a].y, p.v[a].z};
   s_->start = s_->coupled.begin(cp);
   s_->impulse.assign(n, Vec{0.0, 0.0, 0.0});
+  s_->gather();
   member_.assign(n, 0);
   members_.clear();
   for (std::size_t a = 0; a < n; ++a)
@@ -204,20 +220,18 @@ void FlowCoupling::cycle(Particles& p) {
 
 Vec3 FlowCoupling::kick(long a, const Vec3& v, const Vec3& F, double, double h) const {
   const std::size_t i = static_cast<std::size_t>(a);
-  const Vec& pending = s_->coupled.pending_impulse()[i];
-  const double T = s_->interval();
-  const Vec force{F.x + pending[0] / T, F.y + pending[1] / T, F.z + pending[2] / T};
+  const Vec& pressure = s_->pressure[i];  // the pending impulse over the cycle, N
+  const Vec force{F.x + pressure[0], F.y + pressure[1], F.z + pressure[2]};
   Vec out{v.x, v.y, v.z};
-  s_->coupled.drag_step(s_->p, i, out, force, h, s_->start, s_->impulse[i]);
+  coupling::CoupledFlow::drag_update(s_->record[i], out, force, h, s_->impulse[i]);
   return {out[0], out[1], out[2]};
 }
 
 Vec3 FlowCoupling::pressure_force(long a) const {
   const std::size_t i = static_cast<std::size_t>(a);
   if (!started_ || i >= member_.size() || !member_[i]) return {0.0, 0.0, 0.0};
-  const Vec& pending = s_->coupled.pending_impulse()[i];
-  const double T = s_->interval();
-  return {pending[0] / T, pending[1] / T, pending[2] / T};
+  const Vec& f = s_->pressure[i];
+  return {f[0], f[1], f[2]};
 }
 
 void FlowCoupling::renumber(const std::vector<std::uint32_t>& map, std::size_t count) {
@@ -236,6 +250,7 @@ void FlowCoupling::renumber(const std::vector<std::uint32_t>& map, std::size_t c
   for (std::size_t a = 0; a < member_.size(); ++a)
     if (member_[a]) members_.push_back(static_cast<long>(a));
   ++membership_;
+  s_->gather();
 }
 
 namespace {
@@ -313,6 +328,7 @@ void FlowCoupling::restore(const std::vector<char>& bytes, const Particles& p) {
   s_->start = std::move(st.start), s_->impulse = std::move(st.impulse), s_->last = st.last;
   s_->coupled.restore(std::move(c));
   s_->solver.restore(std::move(st.flow));
+  s_->gather();
 }
 
 FlowFields FlowCoupling::fields() const {
