@@ -145,9 +145,10 @@ bool CoupledFlow::drag_update(const StepRecord& r, Vec& v, const Vec& F, double 
   // from the slip the linear part left, so that the terminal slip is (F - F_y) / beta and a particle sticks
   // exactly when its other forces are below F_y.
   const double bound = r.yield * dt / (1.0 + a);  // N s
+  if (!(bound > 0.0)) return false;  // no yield part (air, a Newtonian paste): the slip's norm is not needed
   const Vec w{v[0] - u[0], v[1] - u[1], v[2] - u[2]};
   const double speed = std::hypot(w[0], w[1], w[2]);
-  if (!(bound > 0.0 && speed > 0.0)) return false;
+  if (!(speed > 0.0)) return false;
   const bool stick = r.mass * speed <= bound;
   const double scale = stick ? r.mass : bound / speed;
   for (int c = 0; c < 3; ++c) {
