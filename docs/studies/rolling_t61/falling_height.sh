@@ -23,13 +23,13 @@ h_cm=${1:?the falling height, cm: 6, 10.5 or 15.5}
 shift
 h=$(awk -v c="$h_cm" 'BEGIN { printf "%.4f", c / 100 }')
 zx=$(awk -v c="$h_cm" 'BEGIN { printf "%.4f", c / 100 + 0.02 }')  # the cone's bottom: the 2 cm tube above H_F
-outflow=()
+floor=()
 case $h_cm in
-  10.5) outflow=(--set "domain.min=[-1.0, -1.0, -0.01]" "domain.max=[1.0, 1.0, 0.3]") ;;
-  15.5) outflow=(--set "domain.min=[-2.0, -2.0, -0.01]" "domain.max=[2.0, 2.0, 0.3]") ;;
+  10.5) floor=(--set "domain.min=[-1.0, -1.0, -0.01]" "domain.max=[1.0, 1.0, 0.3]") ;;
+  15.5) floor=(--set "domain.min=[-2.0, -2.0, -0.01]" "domain.max=[2.0, 2.0, 0.3]") ;;
 esac
 psd='factory.0.psd=[{d_min = 3.35e-3, d_max = 5.0e-3, fraction = 0.91346}, {d_min = 5.0e-3, d_max = 8.0e-3, fraction = 0.08654}]'
 exec "$pm" sweep datasets/scenes/repose_ch5.toml --vary dt --values 1.37e-5 --seeds 3 \
-  --set "$psd" "wall.funnel.z_exit=$zx" "wall.funnel.velocity=[0, 0, 0]" "wall.plate.center=[0, 0, $h]" end_time=3 "${outflow[@]}" \
+  --set "$psd" "wall.funnel.z_exit=$zx" "wall.funnel.velocity=[0, 0, 0]" "wall.plate.center=[0, 0, $h]" end_time=3 "${floor[@]}" \
   --qoi repose_angle --checkpoint-every 300 --out "out/studies/falling_height/h$h_cm" \
   --save "out/studies/falling_height/h$h_cm/piles" --ledger "$here/falling_height_$h_cm.csv" "$@"
