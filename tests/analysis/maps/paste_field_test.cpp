@@ -206,8 +206,11 @@ TEST_CASE("paste field: a bad field is an InputError naming the file and the dat
   test::ResultSpec range = field_spec({});
   range.flow_alpha[5] = 1.5;
   fails_with(range, "range.h5", "not in [0, 1]");
-  range.flow_alpha[5] = -0.021;  // past the coupled advection's measured -0.0104
+  range.flow_alpha[5] = -0.11;  // past the per-cell bound (the coupled advection's worst measured: -0.0242)
   fails_with(range, "range2.h5", "not in [0, 1]");
+  test::ResultSpec many = field_spec({});  // each cell within the bound, but together more than 1e-3 of the paste
+  for (int c = 0; c < 24; ++c) many.flow_alpha[static_cast<std::size_t>(10 * 12 + c)] = -0.09;
+  fails_with(many, "many.h5", "of the field's paste");
   test::ResultSpec nan = field_spec({});
   nan.flow_alpha[7] = std::nan("");
   fails_with(nan, "nan.h5", "paste_fraction");
