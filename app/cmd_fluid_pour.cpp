@@ -52,6 +52,7 @@ std::string plot(const std::filesystem::path& csv, const std::filesystem::path& 
 
 struct PourOpts {
   int seeds = 15;
+  int first_seed = 1;  // seeds first_seed .. first_seed + seeds - 1: a long study split over runs or machines
   double flow_cell = 0.0;  // m; > 0: the paste with dynamics = "flow" at this cell
   validation::PourFlow flow;
   std::string out = "out/fluid/ball_pour";
@@ -153,6 +154,7 @@ void write_pour_outputs(const std::string& out, const std::string& rows) {
 
 void run_pour(const PourOpts& o) {
   if (o.seeds < 1) throw InputError("--seeds", 0, "seeds", "must be at least 1");
+  if (o.first_seed < 1) throw InputError("--first-seed", 0, "first-seed", "must be at least 1");
   if (!(o.pour.dt_rayleigh > 0.0)) throw InputError("--dt-rayleigh", 0, "dt-rayleigh", "must be positive");
   const Paste paste = resolve_paste(o.paste);
   validation::FunnelPour p = o.pour;
@@ -167,7 +169,7 @@ void run_pour(const PourOpts& o) {
   PourTally t;
   const auto t0 = std::chrono::steady_clock::now();
   const std::clock_t c0 = std::clock();
-  for (int k = 1; k <= o.seeds; ++k) pour_seed(p, k, t);
+  for (int k = o.first_seed; k < o.first_seed + o.seeds; ++k) pour_seed(p, k, t);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const double cpu = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
   const double n = static_cast<double>(t.total);
@@ -186,6 +188,9 @@ void register_pour(CLI::App* val) {
   CLI::App* cmd = val->add_subcommand(
       "ball-pour", "68 balls of 12.6 mm poured from the funnel, 15 cm fall into the paste: Z range and maps");
   cmd->add_option("--seeds", o->seeds, "seeded runs 1..N (default 15, as the thesis)");
+  cmd->add_option("--first-seed", o->first_seed,
+                  "the first seed (default 1): --first-seed 4 --seeds 3 runs seeds 4-6, so that a study's seeds can be "
+                  "split over runs (each seed is the same run whichever command runs it)");
   cmd->add_option("--balls", o->pour.balls, "balls (default 68)");
   cmd->add_option("--dt-rayleigh", o->pour.dt_rayleigh, "time step as a fraction of the Rayleigh time (default 0.5)");
   cmd->add_option("--end", o->pour.end_time, "simulated time limit (s), default 3 (runs stop when all balls rest)");
