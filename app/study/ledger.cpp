@@ -106,7 +106,9 @@ Ledger::Ledger(std::filesystem::path path) : path_(std::move(path)) {
   if (path_.empty() || !std::filesystem::exists(path_, ec)) return;
   drop_torn_tail(path_);
   if (std::filesystem::file_size(path_) == 0) return;
-  {  // A ledger whose rows were all taken out (to rerun them) is its header alone: no finished task.
+  // A ledger whose rows were all taken out (to rerun them) is its header alone: no finished task. Only a file
+  // no longer than the header and a line end can be that, so a real ledger is read once.
+  if (std::filesystem::file_size(path_) <= std::strlen(kHeader) + 2) {
     std::ifstream in(path_);
     std::stringstream text;
     text << in.rdbuf();

@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: MIT
 #include "validation/fluid/steel_ball_flow.h"
 
-#include <algorithm>
 #include <chrono>
 #include <cmath>
 
 #include <fmt/format.h>
 
 #include "base/units.h"
+#include "model/fluid/buoyancy.h"
 #include "model/fluid/flow_coupling.h"
 #include "model/scene.h"
 #include "validation/fluid/single_sphere.h"
@@ -54,9 +54,8 @@ FlowBallDrop steel_ball_drop_flow(const SteelBallPaste& p, double d, double heig
     const auto& q = w.particles();
     if (!entered && q.x[0].z - rad < r.depth) entered = true, v_entry = q.v[0].z, t_entry = w.time();
     if (entered) {
-      const double below = std::clamp(r.depth - (q.x[0].z - rad), 0.0, d);  // m, the cap's height
       J.pressure += w.flow()->pressure_force(0).z * r.dt;
-      J.hydrostatic += p.rho_paste * kG * units::pi * below * below * (3.0 * rad - below) / 3.0 * r.dt;
+      J.hydrostatic += p.rho_paste * kG * fluid::submerged_volume(q.x[0].z, rad, r.depth) * r.dt;
     }
     if (q.x[0].z < rad + 1e-3) {
       out.drop.reached_bottom = true;

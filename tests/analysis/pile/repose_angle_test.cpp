@@ -40,6 +40,25 @@ void strew(int n, double rho_lo, double rho_hi, double d_lo, double d_hi, std::u
     rad.push_back(r);
   }
 }
+// A cone pile (cone_pile, axis at (0.3, 0.2)) measured bare and again with spheres strewn around it (strew).
+struct Strewn {
+  ReposeAngle bare, strewn;
+};
+Strewn cone_then_strewn(double theta_deg, double d, std::uint64_t cone_seed, int n, double rho_lo, double rho_hi,
+                        double d_lo, double d_hi, std::uint64_t strew_seed) {
+  std::vector<pastemix::Vec3> pos;
+  std::vector<double> rad;
+  cone_pile(theta_deg, 0.06, d, pos, rad, cone_seed);
+  const ReposeOptions at_axis{.axis_xy = std::array<double, 2>{0.3, 0.2}};
+  Strewn out;
+  out.bare = measure_repose_angle(pos, rad, at_axis);
+  strew(n, rho_lo, rho_hi, d_lo, d_hi, strew_seed, pos, rad);
+  out.strewn = measure_repose_angle(pos, rad, at_axis);
+  MESSAGE(theta_deg << " deg cone: " << out.bare.angle_deg << " deg, diameter " << out.bare.diameter << " m; with "
+                    << n << " strewn spheres " << out.strewn.angle_deg << " +- " << out.strewn.sd_deg << " deg, "
+                    << out.strewn.diameter << " m");
+  return out;
+}
 }  // namespace
 
 TEST_CASE("repose angle: synthetic cones of 25, 35 and 40 degrees within 1 degree") {
@@ -87,15 +106,7 @@ TEST_CASE("repose angle: debris beyond the pile's foot (spheres that bounced or 
   // A 35 deg cone of 3 mm spheres (12 cm across, 4.2 cm high) and 24 lone 8 mm spheres strewn 0.15-0.6 m from
   // its axis, as the chapter-5 falling-height drops leave them: each lone sphere's top (8 mm) lies inside the
   // flank band (15-75 % of the height), so a fit that took every cell outward of the peak flattened the line.
-  std::vector<pastemix::Vec3> pos;
-  std::vector<double> rad;
-  cone_pile(35.0, 0.06, 0.003, pos, rad, 9);
-  const ReposeOptions at_axis{.axis_xy = std::array<double, 2>{0.3, 0.2}};
-  const auto clean = measure_repose_angle(pos, rad, at_axis);
-  strew(24, 0.15, 0.6, 0.008, 0.008, 3, pos, rad);
-  const auto strewn = measure_repose_angle(pos, rad, at_axis);
-  MESSAGE("35 deg cone: " << clean.angle_deg << " deg, diameter " << clean.diameter << " m; with 24 lone spheres "
-                          << strewn.angle_deg << " deg, " << strewn.diameter << " m");
+  const auto [clean, strewn] = cone_then_strewn(35.0, 0.003, 9, 24, 0.15, 0.6, 0.008, 0.008, 3);
   CHECK(std::abs(clean.angle_deg - 35.0) < 1.0);
   // Not to round-off: the 24 spheres move the mean diameter (3.003 against 3.000 mm), hence the bin width and
   // the toe height. The fit over every cell outward of the peak gave 4.9 deg and 0.82 m here.
@@ -109,15 +120,7 @@ TEST_CASE("repose angle: a low pile in a single-layer apron of larger spheres (a
   // fall inside the flank band (15-75 % of the height: 3.6-18 mm); taken as flank they read 2.2 deg here and
   // 5.4 deg on the real pile (its radial profile: ~22 deg). The foot (two bins whose top sphere lies on the floor)
   // ends them.
-  std::vector<pastemix::Vec3> pos;
-  std::vector<double> rad;
-  cone_pile(22.0, 0.06, 0.004, pos, rad, 4);
-  const ReposeOptions at_axis{.axis_xy = std::array<double, 2>{0.3, 0.2}};
-  const auto bare = measure_repose_angle(pos, rad, at_axis);
-  strew(600, 0.065, 0.17, 0.00335, 0.008, 8, pos, rad);
-  const auto apron = measure_repose_angle(pos, rad, at_axis);
-  MESSAGE("22 deg cone: " << bare.angle_deg << " deg, diameter " << bare.diameter << " m; in the apron " << apron.angle_deg
-                          << " +- " << apron.sd_deg << " deg, " << apron.diameter << " m");
+  const auto [bare, apron] = cone_then_strewn(22.0, 0.004, 4, 600, 0.065, 0.17, 0.00335, 0.008, 8);
   CHECK(std::abs(bare.angle_deg - 22.0) < 1.0);
   CHECK(std::abs(apron.angle_deg - bare.angle_deg) < 1.0);
   CHECK(apron.diameter == doctest::Approx(bare.diameter).epsilon(0.1));
