@@ -3,8 +3,8 @@
 # The flow scene is generated from datasets/scenes/mixing_case3.toml (nothing else changes): its collective
 # rule (an at-rest model) is replaced by the flow keys of the base setting below; each variant refines one of
 # them. Every run: the issue-15 band overrides (time step 2e-5 s, 10 s safety limit), one thread, the scene's
-# seed 3 and the next two where stated. Finished runs (a `done` marker) are never rerun; a killed run restarts
-# from its start; a run recorded in docs/studies/case3_flow/runs/ (committed) is never rerun either.
+# seed 3 and the next two where stated. Finished runs (a `done` marker) are never rerun; a killed run continues
+# from its checkpoint; a run recorded in docs/studies/case3_flow/runs/ (committed) is never rerun either.
 # Then `maps` of each run (the paste-field maps, analysis/maps/paste_field.h) and
 # scripts/flow_convergence.py tabulate the map change of each refinement against the seed spread of the base.
 #   PASTEMIX=/path/to/pastemix docs/studies/case3_flow/study.sh [RUN ...]   (default: every run, in order)
@@ -40,9 +40,13 @@ for r in "${runs[@]}"; do
   awk -v keys="$flow_keys" '/^collective = "bearing_capacity"/ { print keys; next } { print }' \
     datasets/scenes/mixing_case3.toml > "$d/mixing_case3.toml"
   fi
-  echo "== $name (seed $seed) $(date -u +%FT%TZ)"
+  # A killed run continues from its last checkpoint (every 300 s of wall clock; bit-identical to an unbroken
+  # run, model/checkpoint.h): the 5 mm run takes hours and may span sessions on one machine.
+  resume=()
+  ls "$d"/*.checkpoint.h5 > /dev/null 2>&1 && resume=(--resume "$d")
+  echo "== $name (seed $seed) $(date -u +%FT%TZ)${resume:+ (resumed from its checkpoint)}"
   if "$pm" run "$d/mixing_case3.toml" --overrides docs/studies/rheology_band.overrides.toml --set seed="$seed" \
-      --threads 1 --quiet --out "$d" > "$d/run.log" 2>&1; then
+      --threads "${THREADS:-1}" --quiet --out "$d" --checkpoint-every 300 "${resume[@]}" >> "$d/run.log" 2>&1; then
     touch "$d/done"
   else
     echo "$name: FAILED (see $d/run.log)"; tail -3 "$d/run.log"
