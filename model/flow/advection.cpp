@@ -40,18 +40,27 @@ std::array<double, 3> youngs_normal(const Grid& g, const std::vector<double>& al
 }
 
 // Paste volume (fraction of the donor cell's volume) leaving the donor through its face along d when the
-// CFL number there is v (v > 0: through its high face, the strip [1 - v, 1]; v < 0: its low face, [0, -v]).
-double donor_flux(const Grid& g, const std::vector<double>& alpha, const std::array<int, 3>& donor, int d, double v) {
+// CFL number of the fluid's volume flux there is v (v > 0: through its high face; v < 0: its low face).
+// The donor's fluid fills eps (its fluid fraction, 1 without particles) of the cell, alpha of it paste, and
+// the fluid leaving is the strip of its own volume of width |v| / eps next to that face ([1 - w, 1] or
+// [0, w]; w <= 1: at most all of it), so the paste leaving is eps times what that strip of the reconstructed
+// cell holds. (Cut as if the fluid filled the cell, width |v|, a partly full donor lost up to 1 / eps times
+// the paste it had: alpha went to -0.20 and 1.21 in tests/model/flow/advection_test.cpp.) A full donor gives
+// |v| exactly, an empty one 0.
+double donor_flux(const Grid& g, const std::vector<double>& alpha, const std::array<int, 3>& donor, int d, double v,
+                  double eps) {
   const double a = alpha[g.cell(donor)];
   const double s = std::abs(v);
   if (a <= kFull) return 0.0;
   if (a >= 1.0 - kFull) return s;
+  const double w = eps == 1.0 ? s : std::min(1.0, s / eps);
   const std::array<double, 3> n = youngs_normal(g, alpha, donor);
-  if (std::abs(n[0]) + std::abs(n[1]) + std::abs(n[2]) < 1e-14) return a * s;
+  if (std::abs(n[0]) + std::abs(n[1]) + std::abs(n[2]) < 1e-14) return eps == 1.0 ? a * s : eps * a * w;
   const double c = plic::plane_constant(n, a);
   std::array<double, 3> lo{0.0, 0.0, 0.0}, hi{1.0, 1.0, 1.0};
-  if (v > 0.0) lo[d] = 1.0 - s; else hi[d] = s;
-  return plic::box_fraction(n, c, lo, hi);
+  if (v > 0.0) lo[d] = 1.0 - w; else hi[d] = w;
+  const double f = plic::box_fraction(n, c, lo, hi);
+  return eps == 1.0 ? f : eps * f;
 }
 
 // Koren-limited value at a control-volume face, for the flow from `up` towards `down` (`far` is upstream of `up`).
@@ -85,8 +94,9 @@ struct Sweep {
 };
 
 // The fluxes of one sweep along d, from the current alpha and the frozen velocity u0.
+// eps_cell: the cells' fluid fractions at the step's start (nullptr: no particles, every cell's fluid fills it).
 Sweep sweep_fluxes(const Grid& g, const Phases& ph, double dt, int d, const std::vector<double>& alpha,
-                   const Faces& u0) {
+                   const Faces& u0, const std::vector<double>* eps_cell) {
   Sweep s;
   const long nf = g.face_count(d);
   s.V.assign(nf, 0.0);
@@ -103,7 +113,8 @@ Sweep sweep_fluxes(const Grid& g, const Phases& ph, double dt, int d, const std:
       donor[d] = g.wrap_cell(d, q[d]);
     }
     double flux = 0.0;  // inflow through an open side brings air
-    if (donor[d] >= 0) flux = donor_flux(g, alpha, donor, d, v);
+    if (donor[d] >= 0)
+      flux = donor_flux(g, alpha, donor, d, v, eps_cell != nullptr ? (*eps_cell)[g.cell(donor)] : 1.0);
     s.V[f] = v;
     s.F[f] = v > 0.0 ? flux : -flux;
     s.M[f] = ph.rho_air * v + (ph.rho_paste - ph.rho_air) * s.F[f];
@@ -196,7 +207,7 @@ AdvectionStats advect(const Grid& g, const Phases& ph, double dt, long step, std
   const int order = static_cast<int>(step % 3);
   for (int sweep = 0; sweep < 3; ++sweep) {
     const int d = (order + sweep) % 3;
-    const Sweep s = sweep_fluxes(g, ph, dt, d, alpha, adv);
+    const Sweep s = sweep_fluxes(g, ph, dt, d, alpha, adv, eps != nullptr ? eps->old_cell : nullptr);
 
     std::vector<double> next(alpha.size());
     for_cells(g, [&](const std::array<int, 3>& q) {
