@@ -122,13 +122,14 @@ struct FlowCoupling::State {
 
   State(FluidRegion r, double step, const Vec3& g)
       : region(std::move(r)), dt(step), gravity(g),
-        solver(region_grid(region), region_phases(region), settings(g)),
+        solver(region_grid(region), region_phases(region), settings(region, g)),
         coupled(solver, coupling_settings(region, g)) {
     solver.add_paste_box({region.x_min, region.y_min, region.z_bottom}, {region.x_max, region.y_max, region.z_surface0});
   }
-  static flow::FlowSettings settings(const Vec3& g) {
+  static flow::FlowSettings settings(const FluidRegion& r, const Vec3& g) {
     flow::FlowSettings s;
     s.gravity = {g.x, g.y, g.z};
+    if (r.flow_time_step > 0.0) s.max_time_step = r.flow_time_step;
     return s;
   }
   static coupling::CouplingSettings coupling_settings(const FluidRegion& r, const Vec3& g) {

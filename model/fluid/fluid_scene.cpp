@@ -117,7 +117,7 @@ void read_drag_law(const Params& f, const std::string& scene_path, FluidRegion& 
 void read_dynamics(const Params& f, FluidRegion& r, const Vec3& domain_max) {
   const bool flow = f.choice_or("dynamics", {"at_rest", "flow"}, "at_rest") == "flow";
   if (!flow) {
-    for (const char* key : {"cell", "cells", "top", "kernel_width", "coupling_interval", "regularisation"})
+    for (const char* key : {"cell", "cells", "top", "kernel_width", "coupling_interval", "regularisation", "flow_time_step"})
       if (f.has(key)) f.fail(key, fmt::format("{} is a key of dynamics = \"flow\" (this region is at rest)", key));
     return;
   }
@@ -187,6 +187,9 @@ void read_dynamics(const Params& f, FluidRegion& r, const Vec3& domain_max) {
   } else if (f.has("regularisation")) {
     f.fail("regularisation", "regularisation is for a paste with a yield stress (this one has none)");
   }
+  // The flow's sub-step inside a cycle: the time-step convergence of the lagged viscosity (model/flow/bingham.h)
+  // is then separable from the coupling interval's.
+  if (f.has("flow_time_step")) r.flow_time_step = f.number("flow_time_step", Range::positive);
   r.flow = true, r.flow_top = top, r.kernel_width = c, r.coupling_interval = interval;
 }
 

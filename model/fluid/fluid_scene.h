@@ -34,6 +34,8 @@
 //   coupling_interval = 1                #   DEM steps per coupling cycle (fluid/flow_coupling.h), >= 1
 //   regularisation = 1000.0              #   s, Papanastasiou's m (model/flow/bingham.h), required with a
 //                                        #   yield stress (its effect is part of every result)
+//   flow_time_step = 1e-3                #   s, optional: the flow's largest sub-step inside a coupling cycle
+//                                        #   (default the solver's 1e-2 s; the CFL bound applies as well)
 //                                        # A flow region is the scene's only [[fluid]] region, without the
 //                                        # collective rule (the paste's own stress carries a pile).
 //

@@ -115,6 +115,17 @@ TEST_CASE("fluid scene: a valid dynamics = flow region is the flow pass's, with 
   CHECK(s.fluid[0].regularisation == 100.0);
   CHECK(s.fluid[0].kernel_width == 2.5);
   CHECK(s.fluid[0].flow_cells == std::array<int, 3>{12, 12, 30});  // 0.06 x 0.06 x 0.15 m in 5 mm cells
+  CHECK(s.fluid[0].flow_time_step == 0.0);  // the solver's default
+}
+
+TEST_CASE("fluid scene: flow_time_step caps the flow's sub-step in a cycle; positive, and a key of flow only") {
+  Dir d;
+  const std::string flow = "dynamics = \"flow\"\ncell = 0.005\ntop = 0.15\nregularisation = 100\n";
+  says(error_of(d, with(tiny_scene(), "#DYN", flow + "flow_time_step = 0")), "flow_time_step");
+  says(error_of(d, with(tiny_scene(), "#DYN", flow + "flow_time_step = -1e-3")), "flow_time_step");
+  says(error_of(d, with(tiny_scene(), "#DYN", "flow_time_step = 1e-3")), "is a key of dynamics = \"flow\"");
+  std::ofstream(d.path / "scene.toml") << with(tiny_scene(), "#DYN", flow + "flow_time_step = 1e-3");
+  CHECK(load_scene(d.path / "scene.toml").fluid[0].flow_time_step == 1e-3);
 }
 
 TEST_CASE("fluid scene: cells = [nx, ny, nz] sets a nearly cubic grid that need not divide by one size") {
