@@ -127,6 +127,7 @@ void register_raft(CLI::App* cpl) {
   raft->add_option("--interval", rs->coupling_interval, "DEM steps per flow interval (default 50)")->check(CLI::PositiveNumber);
   raft->add_option("--flow-dt", rs->flow_time_step, "the flow's largest sub-step in a cycle, s (default the solver's 1e-2)")
       ->check(CLI::PositiveNumber);
+  raft->add_flag("--implicit-stick", rs->implicit_stick, "a yield-held sphere moves with the paste in the flow step");
   raft->add_option("--trace", rs->trace_every, "s between trace lines (default none)")->check(CLI::PositiveNumber);
   raft->callback([rs, sweep, bisect] {
     try {

@@ -80,6 +80,7 @@ RunOutput::RunOutput(const std::filesystem::path& h5_path, std::string h5_final_
       h5_->attribute("/flow", "coupling_interval", static_cast<std::int64_t>(f.coupling_interval));
       h5_->attribute("/flow", "regularisation_s", f.regularisation);
       if (f.flow_time_step > 0.0) h5_->attribute("/flow", "flow_time_step_s", f.flow_time_step);
+      if (f.implicit_stick) h5_->attribute("/flow", "implicit_stick", static_cast<std::int64_t>(1));
     }
   }
 }

@@ -88,6 +88,7 @@ CoupledFlow::Start CoupledFlow::drag_at_start(const CoupledParticles& p) const {
   const flow::Faces& mask0 = s0.mask;
   s0.beta.assign(n, 0.0);
   s0.shift.assign(n, {0.0, 0.0, 0.0});
+  s0.stuck.assign(n, 0);
   s0.u = exchange_.fluid_velocity({p.x, p.d, p.m, none, none}, flow_.velocity(), mass0, &mask0, s0.share);
   s0.x.assign(p.x.begin(), p.x.end());
   const std::vector<double>& eps_now = flow_.fluid_fraction();
@@ -163,13 +164,15 @@ bool CoupledFlow::drag_update(const StepRecord& r, Vec& v, const Vec& F, double 
 // (backward Euler, v' = (v + a dt + (beta dt / m) u_p) / (1 + beta dt / m): stable at any beta dt / m, and it
 // lands on the terminal slip), the yield stick, the drift. The drag impulses are summed into sub (J_sub).
 void CoupledFlow::dem_step(CoupledParticles& p, std::size_t i, double dt, int steps, const ExtraForce& extra,
-                           const Start& s0, std::vector<Vec>& sub, CycleStats& st) const {
+                           Start& s0, std::vector<Vec>& sub, CycleStats& st) const {
   const flow::Grid& g = flow_.grid();
   Vec F{};
   const Vec fx = extra ? extra(i, p) : Vec{};
   for (int c = 0; c < 3; ++c) F[c] = p.m[i] * s_.gravity[c] + pending_[i][c] / (steps * dt) + fx[c];
   Vec& v = p.v[i];
-  st.stuck_steps += drag_step(p, i, v, F, dt, s0, sub[i]) ? 1 : 0;
+  const bool stuck = drag_step(p, i, v, F, dt, s0, sub[i]);
+  s0.stuck[i] = stuck ? 1 : 0;
+  st.stuck_steps += stuck ? 1 : 0;
   for (int c = 0; c < 3; ++c) {
     double& x = p.x[i][c];
     x += v[c] * dt;
@@ -198,7 +201,16 @@ void CoupledFlow::flow_interval(CoupledParticles& p, double T, const Start& s0, 
   int parts = split(T);
   double f0 = 0.0;
   int j0 = 0;  // the sub-step index at the last split
-  const ExchangeParticles view{p.x, p.d, p.m, s0.beta, none};
+  // With the implicit stick, a held particle's beta in the correct exchange is K m / h (h the sub-step): its
+  // B = beta m / (m + h beta) is then m / h to 1e-6, i.e. it moves with the fluid's change at it.
+  std::vector<double> beta_correct;
+  if (s_.implicit_stick) {
+    beta_correct = s0.beta;
+    const double h = T / parts;  // the sub-step (a later split only shortens it: K m / h stays >= 1e6 m / h')
+    for (std::size_t i = 0; i < n; ++i)
+      if (i < s0.stuck.size() && s0.stuck[i] && s0.share[i] > 0.0) beta_correct[i] = std::max(s0.beta[i], kStickBeta * p.m[i] / h);
+  }
+  const ExchangeParticles view{p.x, p.d, p.m, s_.implicit_stick ? std::span<const double>(beta_correct) : std::span<const double>(s0.beta), none};
   const ExchangeParticles at_start_view{s0.x, p.d, p.m, s0.beta, none};  // the drag's own weights (Start::x)
   std::vector<Vec> impulse, reference = s0.u;
   flow::Faces at_start, at_end;  // N s/m3: the pressure impulses, split by the positions their fluid mass had
@@ -294,7 +306,7 @@ CycleStats CoupledFlow::cycle(CoupledParticles& p, int steps, double dt, const E
     throw std::invalid_argument("coupling: particle arrays differ in length (or start() was not called)");
   if (steps < 1 || !(dt > 0.0)) throw std::invalid_argument("coupling: a cycle needs steps >= 1 and dt > 0");
   CycleStats st;
-  const Start s0 = drag_at_start(p);
+  Start s0 = drag_at_start(p);
   std::vector<Vec> sub(n, {0.0, 0.0, 0.0});
   for (int k = 0; k < steps; ++k)
     for (std::size_t i = 0; i < n; ++i) dem_step(p, i, dt, steps, extra, s0, sub, st);

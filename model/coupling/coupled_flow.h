@@ -59,7 +59,17 @@ struct CouplingSettings {
   double width_factor = kDefaultWidthFactor;  // kernel width c (kernel.h)
   DragClosure closure;                        // voidage and disturbance corrections (drag.h)
   std::array<double, 3> gravity{0.0, 0.0, -9.81};  // m/s2, on the particles (the flow has its own)
+  // A particle the yield part held at its last DEM step of the sub-cycle follows the fluid's own change during
+  // the flow interval as part of the paste (the correct exchange with beta -> infinity for it: its mass joins
+  // the faces' in the implicit solve), instead of meeting that change as a velocity jump at the next cycle's
+  // start, which its yield margin (F_y - weight) takes several steps to absorb, slipping meanwhile (the raft's
+  // slip, first order in the cycle T: VALIDATION.md). Off: the stick is against the frozen u_p alone.
+  bool implicit_stick = false;
 };
+
+// K of the implicit stick (CouplingSettings::implicit_stick): a held particle's beta in the correct exchange is
+// K m / h, its B = m / h to 1 / K.
+inline constexpr double kStickBeta = 1e6;
 
 struct CycleStats {
   int flow_steps = 0;
@@ -99,6 +109,9 @@ class CoupledFlow {
     // the one near-air face its end support still reaches.
     std::vector<Vec> x;
     flow::Faces mask;
+    // Per particle: 1 if the yield part held it at its last DEM step of the sub-cycle (the DEM writes it:
+    // drag_step's result), read by finish() with CouplingSettings::implicit_stick.
+    std::vector<char> stuck;
   };
   Start begin(const CoupledParticles& p) const { return drag_at_start(p); }
   // Particle i's velocity v (in/out) after a step dt under the force F (N: every force but the paste's drag,
@@ -147,7 +160,7 @@ class CoupledFlow {
 
  private:
   Start drag_at_start(const CoupledParticles& p) const;
-  void dem_step(CoupledParticles& p, std::size_t i, double dt, int steps, const ExtraForce& extra, const Start& s0,
+  void dem_step(CoupledParticles& p, std::size_t i, double dt, int steps, const ExtraForce& extra, Start& s0,
                 std::vector<Vec>& sub, CycleStats& st) const;
   void flow_interval(CoupledParticles& p, double T, const Start& s0, const std::vector<Vec>& sub, CycleStats& st);
   std::vector<double> fluid_fraction(const CoupledParticles& p) const;  // eps_f = 1 - eps_s per cell

@@ -82,6 +82,7 @@ struct FluidRegion {
   long coupling_interval = 1;     // DEM steps per coupling cycle (one flow interval)
   double regularisation = 0.0;    // s, Papanastasiou's m of a yield-stress paste in the flow (model/flow/bingham.h)
   double flow_time_step = 0.0;    // s, the flow's largest sub-step within a cycle (0: the solver's default)
+  bool implicit_stick = false;    // a yield-held particle follows the paste in the flow step (coupled_flow.h)
 
   double area() const { return (x_max - x_min) * (y_max - y_min); }
   double density() const { return std::visit([](const auto& p) { return p.density; }, law); }  // kg/m3

@@ -135,6 +135,7 @@ struct FlowCoupling::State {
   static coupling::CouplingSettings coupling_settings(const FluidRegion& r, const Vec3& g) {
     coupling::CouplingSettings s;
     s.width_factor = r.kernel_width;
+    s.implicit_stick = r.implicit_stick;
     s.gravity = {g.x, g.y, g.z};
     return s;
   }
@@ -224,7 +225,8 @@ Vec3 FlowCoupling::kick(long a, const Vec3& v, const Vec3& F, double, double h) 
   const Vec& pressure = s_->pressure[i];  // the pending impulse over the cycle, N
   const Vec force{F.x + pressure[0], F.y + pressure[1], F.z + pressure[2]};
   Vec out{v.x, v.y, v.z};
-  coupling::CoupledFlow::drag_update(s_->record[i], out, force, h, s_->impulse[i]);
+  const bool stuck = coupling::CoupledFlow::drag_update(s_->record[i], out, force, h, s_->impulse[i]);
+  if (i < s_->start.stuck.size()) s_->start.stuck[i] = stuck ? 1 : 0;  // its own entry: the owner thread's
   return {out[0], out[1], out[2]};
 }
 
@@ -242,7 +244,7 @@ void FlowCoupling::renumber(const std::vector<std::uint32_t>& map, std::size_t c
   remap(cp.drag, map, count);
   auto& st = s_->start;
   remap(st.u, map, count), remap(st.share, map, count), remap(st.beta, map, count), remap(st.shift, map, count);
-  remap(st.x, map, count);
+  remap(st.x, map, count), remap(st.stuck, map, count);
   remap(s_->impulse, map, count), remap(member_, map, count);
   coupling::CoupledFlow::State c = s_->coupled.state();
   remap(c.x_flow, map, count), remap(c.pending, map, count), remap(c.drag, map, count);
@@ -273,7 +275,7 @@ void pack_state(IO& io, S& st, C& coupled, std::vector<char>& member, std::vecto
   };
   io(member), io(list), io(step), io(cycles);
   io(st.p.x), io(st.p.v), io(st.start.u), io(st.start.share), io(st.start.beta), io(st.start.shift), io(st.impulse);
-  io(st.start.x), faces(st.start.mask);
+  io(st.start.x), faces(st.start.mask), io(st.start.stuck);
   io(st.last), io(coupled.x_flow), io(coupled.pending), io(coupled.drag), io(coupled.interval);
   auto& f = st.flow;
   faces(f.u), faces(f.continuity_impulse), faces(f.pressure_impulse);
@@ -284,7 +286,9 @@ void pack_state(IO& io, S& st, C& coupled, std::vector<char>& member, std::vecto
 // The raw-byte structs of the flow state, by size: a checkpoint of another build (a field added to the cycle's
 // stats, say) is then named as such instead of reading as damaged bytes.
 std::string flow_sizes_tag() {
-  return fmt::format("flow state: CycleStats {} StepStats {} Totals {}", sizeof(coupling::CycleStats),
+  // "stuck": the layout with the start's stuck flags (the implicit stick, coupled_flow.h); a state without them
+  // is another version's.
+  return fmt::format("flow state: CycleStats {} StepStats {} Totals {} stuck", sizeof(coupling::CycleStats),
                      sizeof(flow::FlowSolver::State::last), sizeof(flow::FlowSolver::State::totals));
 }
 

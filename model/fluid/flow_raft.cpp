@@ -49,6 +49,7 @@ std::string raft_scene(const RaftSettings& s, double density) {
       s.coupling_interval, fmt::arg("w", s.box), fmt::arg("m", s.box + 0.01), fmt::arg("d", kDepth),
       fmt::arg("h", kHeight));
   if (s.flow_time_step > 0.0) text += fmt::format("flow_time_step = {}\n", s.flow_time_step);
+  if (s.implicit_stick) text += "implicit_stick = true\n";
   const double x0 = 0.5 * s.box - 0.5 * (kSide - 1) * kPitch;
   for (int j = 0; j < kSide; ++j)
     for (int i = 0; i < kSide; ++i)

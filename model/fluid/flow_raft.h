@@ -48,6 +48,7 @@ struct RaftSettings {
   double time_step = 1e-4;         // s, the DEM step (no contact acts: the raft keeps its shape by its reset)
   long coupling_interval = 50;     // DEM steps per flow interval
   double flow_time_step = 0.0;     // s, the flow's largest sub-step in a cycle (0: the solver's default, 1e-2)
+  bool implicit_stick = false;     // model/coupling/coupled_flow.h
   double hold_speed = 2e-3;        // m/s: a raft slower than this at the end has stopped
   double speed_window = 0.1;       // s, the end speed is the mean over the run's last window
   double fail_settlement = 5e-3;   // m, 0.1 B

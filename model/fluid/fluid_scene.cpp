@@ -117,7 +117,8 @@ void read_drag_law(const Params& f, const std::string& scene_path, FluidRegion& 
 void read_dynamics(const Params& f, FluidRegion& r, const Vec3& domain_max) {
   const bool flow = f.choice_or("dynamics", {"at_rest", "flow"}, "at_rest") == "flow";
   if (!flow) {
-    for (const char* key : {"cell", "cells", "top", "kernel_width", "coupling_interval", "regularisation", "flow_time_step"})
+    for (const char* key : {"cell", "cells", "top", "kernel_width", "coupling_interval", "regularisation", "flow_time_step",
+                            "implicit_stick"})
       if (f.has(key)) f.fail(key, fmt::format("{} is a key of dynamics = \"flow\" (this region is at rest)", key));
     return;
   }
@@ -190,6 +191,7 @@ void read_dynamics(const Params& f, FluidRegion& r, const Vec3& domain_max) {
   // The flow's sub-step inside a cycle: the time-step convergence of the lagged viscosity (model/flow/bingham.h)
   // is then separable from the coupling interval's.
   if (f.has("flow_time_step")) r.flow_time_step = f.number("flow_time_step", Range::positive);
+  r.implicit_stick = f.boolean_or("implicit_stick", false);
   r.flow = true, r.flow_top = top, r.kernel_width = c, r.coupling_interval = interval;
 }
 

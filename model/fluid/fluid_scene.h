@@ -36,6 +36,8 @@
 //                                        #   yield stress (its effect is part of every result)
 //   flow_time_step = 1e-3                #   s, optional: the flow's largest sub-step inside a coupling cycle
 //                                        #   (default the solver's 1e-2 s; the CFL bound applies as well)
+//   implicit_stick = false               #   optional: a yield-held particle moves with the paste during the
+//                                        #   flow interval (model/coupling/coupled_flow.h)
 //                                        # A flow region is the scene's only [[fluid]] region, without the
 //                                        # collective rule (the paste's own stress carries a pile).
 //

@@ -32,12 +32,17 @@ namespace fs = std::filesystem;
 
 using model::test::same_bits;
 
-TEST_CASE("flow checkpoint: resumed mid-cycle in a fresh World, the run goes on with the same bits") {
+namespace {
+void resume_mid_cycle(bool stick) {
+  CAPTURE(stick);
   const fs::path dir = fs::absolute(fmt::format("flow_checkpoint_{}", ::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
-  // Rocks just above and in the paste: contacts, the exchange and the pending pressure impulses all in use.
-  const Scene scene = model::test::scene_from(model::test::flow_drop_scene(0.3, 20, "0.05", "0.11"));
+  // Rocks just above and in the paste: contacts, the exchange and the pending pressure impulses all in use; with
+  // the implicit stick also the cycle's stuck flags (saved with the start).
+  std::string text = model::test::flow_drop_scene(0.3, 20, "0.05", "0.11");
+  if (stick) text.replace(text.find("coupling_interval"), 0, "implicit_stick = true\n");
+  const Scene scene = model::test::scene_from(text);
   World a = make_world(scene);
   a.advance(2510);  // 125 cycles of 20 steps and 10 steps into the next
   REQUIRE(a.flow()->cycles() == 125);
@@ -64,6 +69,12 @@ TEST_CASE("flow checkpoint: resumed mid-cycle in a fresh World, the run goes on 
   CHECK(same_bits(fa.alpha(), fb.alpha()));
   CHECK(same_bits(fa.fluid_fraction(), fb.fluid_fraction()));
   fs::remove_all(dir);
+}
+}  // namespace
+
+TEST_CASE("flow checkpoint: resumed mid-cycle in a fresh World, the run goes on with the same bits") {
+  resume_mid_cycle(false);
+  resume_mid_cycle(true);
 }
 
 // The flow state's raw structs are tagged by size (flow_coupling.cpp flow_sizes_tag): a checkpoint of a build

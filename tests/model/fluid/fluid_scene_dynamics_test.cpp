@@ -118,7 +118,7 @@ TEST_CASE("fluid scene: a valid dynamics = flow region is the flow pass's, with 
   CHECK(s.fluid[0].flow_time_step == 0.0);  // the solver's default
 }
 
-TEST_CASE("fluid scene: flow_time_step caps the flow's sub-step in a cycle; positive, and a key of flow only") {
+TEST_CASE("fluid scene: flow_time_step caps the flow's sub-step in a cycle, positive, a key of flow only") {
   Dir d;
   const std::string flow = "dynamics = \"flow\"\ncell = 0.005\ntop = 0.15\nregularisation = 100\n";
   says(error_of(d, with(tiny_scene(), "#DYN", flow + "flow_time_step = 0")), "flow_time_step");
@@ -144,4 +144,15 @@ TEST_CASE("fluid scene: cells = [nx, ny, nz] sets a nearly cubic grid that need 
   REQUIRE(s.fluid.size() == 1);
   CHECK(s.fluid[0].flow_cells == std::array<int, 3>{6, 5, 15});
   CHECK(s.fluid[0].flow_cell == doctest::Approx(std::cbrt(0.01 * 0.012 * 0.01)).epsilon(1e-12));
+}
+
+TEST_CASE("fluid scene: implicit_stick is off by default, a boolean, and a key of flow only") {
+  Dir d;
+  const std::string flow = "dynamics = \"flow\"\ncell = 0.005\ntop = 0.15\nregularisation = 100\n";
+  says(error_of(d, with(tiny_scene(), "#DYN", flow + "implicit_stick = 1.5")), "implicit_stick");
+  says(error_of(d, with(tiny_scene(), "#DYN", "implicit_stick = true")), "is a key of dynamics = \"flow\"");
+  std::ofstream(d.path / "scene.toml") << with(tiny_scene(), "#DYN", flow);
+  CHECK_FALSE(load_scene(d.path / "scene.toml").fluid[0].implicit_stick);
+  std::ofstream(d.path / "scene.toml") << with(tiny_scene(), "#DYN", flow + "implicit_stick = true");
+  CHECK(load_scene(d.path / "scene.toml").fluid[0].implicit_stick);
 }
