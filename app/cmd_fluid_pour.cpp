@@ -73,10 +73,10 @@ void print_pour_header(const validation::FunnelPour& p, const Paste& paste) {
   if (p.flow) {
     const auto n = validation::pour_flow_cells(p, *p.flow);
     fmt::print("paste: dynamics = \"flow\", {} x {} x {} cells of {:.2f} x {:.2f} x {:.2f} mm up to {} cm of air above "
-               "the rim, kernel width {}, coupling interval {} steps, m = {} s; at rest: |v| < {} m/s for {} s\n",
+               "the rim, kernel width {}, coupling interval {} steps, m = {} s{}; at rest: |v| < {} m/s for {} s\n",
                n[0], n[1], n[2], 1e3 * p.box_x / n[0], 1e3 * p.box_y / n[1], 1e3 * (p.paste_depth + p.flow->air) / n[2],
                100 * p.flow->air, p.flow->kernel_width, p.flow->coupling_interval, p.flow->regularisation,
-               p.flow->rest_speed, p.flow->rest_time);
+               p.flow->implicit_stick ? ", implicit stick" : "", p.flow->rest_speed, p.flow->rest_time);
   } else {
     fmt::print("paste: at rest (the at-rest field), at rest: v = 0\n");
   }
@@ -201,6 +201,7 @@ void register_pour(CLI::App* val) {
   cmd->add_option("--flow", o->flow_cell, "the paste with dynamics = \"flow\" at this cell size (m), e.g. 0.01")
       ->check(CLI::PositiveNumber);
   add_flow_options(cmd, o->flow.coupling_interval, o->flow.regularisation);
+  cmd->add_flag("--implicit-stick", o->flow.implicit_stick, "with --flow: a yield-held ball moves with the paste in the flow step");
   add_paste_options(cmd, o->paste);
   cmd->callback([o] { run_pour(*o); });
 }

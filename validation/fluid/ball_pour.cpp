@@ -94,6 +94,7 @@ std::string ball_pour_scene(const FunnelPour& p, std::uint64_t seed) {
                      "coupling_interval = {}\nregularisation = {:.17g}\n",
                      n[0], n[1], n[2], p.paste_depth + p.flow->air, p.flow->kernel_width, p.flow->coupling_interval,
                      p.flow->regularisation);
+    if (p.flow->implicit_stick) s += "implicit_stick = true\n";
   }
   // Seeded random loose placement in the lowest fill_height of the cone (the engine's insertion).
   FillRegion region;

@@ -40,6 +40,7 @@ struct PourFlow {
   double regularisation = 1000;  // s, Papanastasiou's m (model/flow/bingham.h)
   double kernel_width = 2.0;     // c of the balls' kernels (model/coupling/kernel.h)
   double air = 0.03;             // m of air in the flow box above the rim
+  bool implicit_stick = false;   // a yield-held ball moves with the paste in the flow step (model/coupling/coupled_flow.h)
   double rest_speed = 1e-4;      // m/s
   double rest_time = 0.1;        // s
 };
