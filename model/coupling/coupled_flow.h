@@ -63,7 +63,8 @@ struct CouplingSettings {
   // the flow interval as part of the paste (the correct exchange with beta -> infinity for it: its mass joins
   // the faces' in the implicit solve), instead of meeting that change as a velocity jump at the next cycle's
   // start, which its yield margin (F_y - weight) takes several steps to absorb, slipping meanwhile (the raft's
-  // slip, first order in the cycle T: VALIDATION.md). Off: the stick is against the frozen u_p alone.
+  // slip, first order in the cycle T: VALIDATION.md). Off: the stick is against the frozen u_p alone. Not
+  // bounded: the impulse that carries a held particle is not capped at its yield part's F_y h (VALIDATION.md).
   bool implicit_stick = false;
 };
 
