@@ -26,6 +26,37 @@ import h5py
 import numpy as np
 
 BASE_SEEDS = ["base_s3", "base_s4", "base_s5"]
+GROUPS = ["", "stick_"]
+
+
+def table(m, names, prefix):
+    """One group's seed spread and refinement table: prefix + base_s3/4/5 against prefix + each variant."""
+    seeds = [m[prefix + n] for n in BASE_SEEDS if prefix + n in m]
+    label = "implicit stick: " if prefix else "frozen stick: "
+    if len(seeds) < 2:
+        print(f"\n{label}seed spread: needs at least two of", ", ".join(prefix + n for n in BASE_SEEDS), "(not finished yet)")
+        sd_C, sd_L = None, None
+    else:
+        sd_C = float(np.mean(np.std(np.stack([s["C"] for s in seeds]), axis=0, ddof=1)))
+        sd_L = [statistics.stdev(s["layers"][k] for s in seeds) for k in range(3)]
+        print(f"\n{label}seed spread of the base ({len(seeds)} seeds): mean block sd of C {sd_C:.2f} %, layer sd "
+              + " / ".join(f"{v:.1f}" for v in sd_L) + " g")
+    if prefix + "base_s3" not in m:
+        return
+    base = m[prefix + "base_s3"]
+    print(f"{'refinement':>20} | {'mean |dC| %':>11} | {'d layer 1':>9} {'d layer 2':>9} {'d layer 3':>9} | within the seed spread")
+    for n in names:
+        rest = n[len(prefix):] if n.startswith(prefix) else None
+        if rest is None or rest.startswith("base") or rest.startswith("at_rest"):
+            continue
+        if prefix == "" and any(n.startswith(p) for p in GROUPS if p):
+            continue
+        r = m[n]
+        dC = float(np.mean(np.abs(r["C"] - base["C"])))
+        dL = r["layers"] - base["layers"]
+        verdict = "(no spread yet)" if sd_C is None else (
+            "yes" if dC <= sd_C and all(abs(dL[k]) <= sd_L[k] for k in range(3)) else "NO")
+        print(f"{n:>20} | {dC:11.2f} | {dL[0]:9.1f} {dL[1]:9.1f} {dL[2]:9.1f} | {verdict}")
 
 
 def maps_of(pm, run_dir, lab_h5):
@@ -111,32 +142,19 @@ def main():
         r = m[n]
         L = r["layers"]
         print(f"{n:>14} | {r['state']:>8} | {L[0]:8.1f} {L[1]:8.1f} {L[2]:8.1f} | {r['wall']:7.0f} | {r['flow_steps']:10d} | {r['solver_s']:.0f}")
-    seeds = [m[n] for n in BASE_SEEDS if n in m]
-    if len(seeds) < 2:
-        print("seed spread: needs at least two of", ", ".join(BASE_SEEDS), "(not finished yet)")
-        sd_C, sd_L = None, None
-    else:
-        sd_C = float(np.mean(np.std(np.stack([s["C"] for s in seeds]), axis=0, ddof=1)))
-        sd_L = [statistics.stdev(s["layers"][k] for s in seeds) for k in range(3)]
-        print(f"seed spread of the base ({len(seeds)} seeds): mean block sd of C {sd_C:.2f} %, layer sd "
-              + " / ".join(f"{v:.1f}" for v in sd_L) + " g")
-    if "base_s3" not in m:
-        return 0
-    if "at_rest_s3" in m:  # the acceptance's cost: flow at ~1 cm cells against at rest, same step, one thread each
+    if "base_s3" in m and "at_rest_s3" in m:  # the acceptance's cost: flow at ~1 cm cells against at rest
         print(f"cost: base_s3 / at_rest_s3 wall {m['base_s3']['wall']:.0f} / {m['at_rest_s3']['wall']:.0f} s = "
               f"{m['base_s3']['wall'] / m['at_rest_s3']['wall']:.2f} (the machine's load during each is not recorded: "
               "a ratio from runs at different loads is noisy)")
-    base = m["base_s3"]
-    print(f"\n{'refinement':>14} | {'mean |dC| %':>11} | {'d layer 1':>9} {'d layer 2':>9} {'d layer 3':>9} | within the seed spread")
-    for n in names:
-        if n.startswith("base") or n.startswith("at_rest"):
-            continue
-        r = m[n]
-        dC = float(np.mean(np.abs(r["C"] - base["C"])))
+    # Groups: the runs without a prefix (the frozen stick, engine b51d0f6) and those named stick_* (the implicit
+    # stick, model/coupling/coupled_flow.h), each against its own base and seed spread.
+    for prefix in GROUPS:
+        table(m, names, prefix)
+    if "base_s3" in m and "stick_base_s3" in m:
+        r, base = m["stick_base_s3"], m["base_s3"]
         dL = r["layers"] - base["layers"]
-        verdict = "(no spread yet)" if sd_C is None else (
-            "yes" if dC <= sd_C and all(abs(dL[k]) <= sd_L[k] for k in range(3)) else "NO")
-        print(f"{n:>14} | {dC:11.2f} | {dL[0]:9.1f} {dL[1]:9.1f} {dL[2]:9.1f} | {verdict}")
+        print(f"\nthe implicit stick (and the engine since b51d0f6) against the frozen stick, seed 3: mean |dC| "
+              f"{float(np.mean(np.abs(r['C'] - base['C']))):.2f} %, layers " + " / ".join(f"{v:+.1f}" for v in dL) + " g")
     return 0
 
 

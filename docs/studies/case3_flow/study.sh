@@ -23,6 +23,16 @@ runs=(
   "m1000_s3|cells = [20, 16, 15]; kernel_width = 2.0; regularisation = 1000.0; coupling_interval = 50|3"
   "kernel3_s3|cells = [20, 16, 15]; kernel_width = 3.0; regularisation = 100.0; coupling_interval = 50|3"
   "cell5mm_s3|cells = [40, 33, 30]; kernel_width = 2.0; regularisation = 100.0; coupling_interval = 12|3"
+  # The same study with the implicit stick (model/coupling/coupled_flow.h; added 2026-12-04 before any score was
+  # looked at: the raft's spheres slipped through the paste by a first-order error in the cycle without it,
+  # model/coupling/VALIDATION.md), on the engine of its commit; each against stick_base_s3..5.
+  "stick_base_s3|cells = [20, 16, 15]; kernel_width = 2.0; regularisation = 100.0; coupling_interval = 50; implicit_stick = true|3"
+  "stick_base_s4|cells = [20, 16, 15]; kernel_width = 2.0; regularisation = 100.0; coupling_interval = 50; implicit_stick = true|4"
+  "stick_base_s5|cells = [20, 16, 15]; kernel_width = 2.0; regularisation = 100.0; coupling_interval = 50; implicit_stick = true|5"
+  "stick_interval10_s3|cells = [20, 16, 15]; kernel_width = 2.0; regularisation = 100.0; coupling_interval = 10; implicit_stick = true|3"
+  "stick_m1000_s3|cells = [20, 16, 15]; kernel_width = 2.0; regularisation = 1000.0; coupling_interval = 50; implicit_stick = true|3"
+  "stick_kernel3_s3|cells = [20, 16, 15]; kernel_width = 3.0; regularisation = 100.0; coupling_interval = 50; implicit_stick = true|3"
+  "stick_cell5mm_s3|cells = [40, 33, 30]; kernel_width = 2.0; regularisation = 100.0; coupling_interval = 12; implicit_stick = true|3"
 )
 want=("$@")
 for r in "${runs[@]}"; do
