@@ -137,8 +137,10 @@ PasteField read_paste_field(const H5Reader& h5, const std::string& file, double 
   // alpha - 1 = 5.2e-6): values within 1e-4 are its round-off, clamped. In air cells inside a packed rock pile
   // (fluid fraction ~0.43) the coupled advection leaves alpha below 0 (case 3 with flow, docs/studies/case3_flow:
   // seed 3 down to -0.0104 in 12 cells, seed 4 to -0.0242 in 6; all of it 1.1e-5 of the paste), the VOF's
-  // boundedness not holding where the fluid fraction changes. Such values, up to 0.1 a cell and 1e-3 of the
-  // field's paste in all, are clamped and named in the source; anything beyond is a bad file.
+  // boundedness not holding where the fluid fraction changes (results of engines before e133a78, whose sweeps cut
+  // a partly full donor's slab as if its fluid filled the cell: fixed there, model/flow/advection.cpp). Such
+  // values, up to 0.1 a cell and 1e-3 of the field's paste in all, are clamped and named in the source; anything
+  // beyond is a bad file.
   double worst = 0.0, excess_sum = 0.0, paste_sum = 0.0;
   std::size_t defects = 0;
   for (std::size_t c = 0; c < f.alpha.size(); ++c) {
