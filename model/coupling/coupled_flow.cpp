@@ -201,16 +201,15 @@ void CoupledFlow::flow_interval(CoupledParticles& p, double T, const Start& s0, 
   int parts = split(T);
   double f0 = 0.0;
   int j0 = 0;  // the sub-step index at the last split
-  // With the implicit stick, a held particle's beta in the correct exchange is K m / h (h the sub-step): its
-  // B = beta m / (m + h beta) is then m / h to 1e-6, i.e. it moves with the fluid's change at it.
-  std::vector<double> beta_correct;
-  if (s_.implicit_stick) {
-    beta_correct = s0.beta;
-    const double h = T / parts;  // the sub-step (a later split only shortens it: K m / h stays >= 1e6 m / h')
+  // With the implicit stick, a held particle's beta in the correct exchange is K m / h (h the first sub-step;
+  // a later split only shortens it): its B = beta m / (m + h beta) is then m / h to 1e-6, i.e. it moves with
+  // the fluid's change at it. (Only a particle with a yield part can be held, so only one in the paste.)
+  std::vector<double> beta_correct = s0.beta;
+  const double h = T / parts;  // s
+  if (s_.implicit_stick)
     for (std::size_t i = 0; i < n; ++i)
-      if (i < s0.stuck.size() && s0.stuck[i] && s0.share[i] > 0.0) beta_correct[i] = std::max(s0.beta[i], kStickBeta * p.m[i] / h);
-  }
-  const ExchangeParticles view{p.x, p.d, p.m, s_.implicit_stick ? std::span<const double>(beta_correct) : std::span<const double>(s0.beta), none};
+      if (s0.stuck[i]) beta_correct[i] = std::max(s0.beta[i], kStickBeta * p.m[i] / h);
+  const ExchangeParticles view{p.x, p.d, p.m, beta_correct, none};
   const ExchangeParticles at_start_view{s0.x, p.d, p.m, s0.beta, none};  // the drag's own weights (Start::x)
   std::vector<Vec> impulse, reference = s0.u;
   flow::Faces at_start, at_end;  // N s/m3: the pressure impulses, split by the positions their fluid mass had

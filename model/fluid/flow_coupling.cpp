@@ -226,7 +226,7 @@ Vec3 FlowCoupling::kick(long a, const Vec3& v, const Vec3& F, double, double h) 
   const Vec force{F.x + pressure[0], F.y + pressure[1], F.z + pressure[2]};
   Vec out{v.x, v.y, v.z};
   const bool stuck = coupling::CoupledFlow::drag_update(s_->record[i], out, force, h, s_->impulse[i]);
-  if (i < s_->start.stuck.size()) s_->start.stuck[i] = stuck ? 1 : 0;  // its own entry: the owner thread's
+  s_->start.stuck[i] = stuck ? 1 : 0;  // its own entry: written by the particle's owner thread only
   return {out[0], out[1], out[2]};
 }
 
