@@ -25,8 +25,26 @@ bool box_face(const flow::Grid& g, int c, const std::array<int, 3>& q) { return 
 CoupledFlow::CoupledFlow(flow::FlowSolver& flow, CouplingSettings settings)
     : flow_(flow), s_(settings), exchange_(flow.grid(), settings.width_factor) {}
 
+const CoupledFlow::Weights& CoupledFlow::weights_at(std::span<const Vec> x, std::span<const double> d) const {
+  ++clock_;
+  for (Weights& w : weights_)
+    if (w.x.size() == x.size() && w.d.size() == d.size() && std::equal(x.begin(), x.end(), w.x.begin()) &&
+        std::equal(d.begin(), d.end(), w.d.begin())) {
+      w.used = clock_;
+      return w;
+    }
+  Weights& w = weights_[0].used <= weights_[1].used ? weights_[0] : weights_[1];  // the one used longest ago
+  w.x.assign(x.begin(), x.end());
+  w.d.assign(d.begin(), d.end());
+  w.stencil.resize(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i) w.stencil[i] = stencil(flow_.grid(), x[i], d[i], s_.width_factor);
+  w.faces = exchange_.face_weights(w.stencil);
+  w.used = clock_;
+  return w;
+}
+
 std::vector<double> CoupledFlow::fluid_fraction(const CoupledParticles& p) const {
-  std::vector<double> eps = solid_fraction(flow_.grid(), p.x, p.d, s_.width_factor);
+  std::vector<double> eps = solid_fraction(flow_.grid(), weights_at(p.x, p.d).stencil, p.d);
   for (std::size_t c = 0; c < eps.size(); ++c) {
     eps[c] = 1.0 - eps[c];
     if (!(eps[c] > 0.0))
@@ -89,7 +107,8 @@ CoupledFlow::Start CoupledFlow::drag_at_start(const CoupledParticles& p) const {
   s0.beta.assign(n, 0.0);
   s0.shift.assign(n, {0.0, 0.0, 0.0});
   s0.stuck.assign(n, 0);
-  s0.u = exchange_.fluid_velocity({p.x, p.d, p.m, none, none}, flow_.velocity(), mass0, &mask0, s0.share);
+  const Weights& at = weights_at(p.x, p.d);
+  s0.u = exchange_.fluid_velocity({p.x, p.d, p.m, none, none, &at.faces}, flow_.velocity(), mass0, &mask0, s0.share);
   s0.x.assign(p.x.begin(), p.x.end());
   const std::vector<double>& eps_now = flow_.fluid_fraction();
   for (std::size_t i = 0; i < n; ++i) {
@@ -98,7 +117,7 @@ CoupledFlow::Start CoupledFlow::drag_at_start(const CoupledParticles& p) const {
       s0.share[i] = 0.0;
       continue;
     }
-    const Stencil s = stencil(g, p.x[i], p.d[i], s_.width_factor);
+    const Stencil& s = at.stencil[i];
     const double seen = eps_now.empty() ? 1.0 : interpolate(g, s, eps_now);
     const double eps = std::min(1.0, seen + own_solid_fraction(g, s, p.d[i]));
     const double mu = interpolate(g, s, flow_.viscosity());
@@ -205,12 +224,14 @@ void CoupledFlow::flow_interval(CoupledParticles& p, double T, const Start& s0, 
   // a later split only shortens it): its B = beta m / (m + h beta) is then m / h to 1e-6, i.e. it moves with
   // the fluid's change at it. (Only a particle with a yield part can be held, so only one in the paste.)
   std::vector<double> beta_correct = s0.beta;
-  const double h = T / parts;  // s
+  const double h_first = T / parts;  // s
   if (s_.implicit_stick)
     for (std::size_t i = 0; i < n; ++i)
-      if (s0.stuck[i]) beta_correct[i] = std::max(s0.beta[i], kStickBeta * p.m[i] / h);
-  const ExchangeParticles view{p.x, p.d, p.m, beta_correct, none};
-  const ExchangeParticles at_start_view{s0.x, p.d, p.m, s0.beta, none};  // the drag's own weights (Start::x)
+      if (s0.stuck[i]) beta_correct[i] = std::max(s0.beta[i], kStickBeta * p.m[i] / h_first);
+  // The face weights at the end positions (the correct exchange's) and at Start::x (the drag's own, for the
+  // reaction); after eps_end's, so both are kept (weights_at).
+  const ExchangeParticles view{p.x, p.d, p.m, beta_correct, none, &weights_at(p.x, p.d).faces};
+  const ExchangeParticles at_start_view{s0.x, p.d, p.m, s0.beta, none, &weights_at(s0.x, p.d).faces};
   std::vector<Vec> impulse, reference = s0.u;
   flow::Faces at_start, at_end;  // N s/m3: the pressure impulses, split by the positions their fluid mass had
   for (int c = 0; c < 3; ++c) at_start[c].assign(g.face_count(c), 0.0), at_end[c].assign(g.face_count(c), 0.0);
@@ -284,9 +305,11 @@ void CoupledFlow::flow_interval(CoupledParticles& p, double T, const Start& s0, 
       }
   }
   // Model A's pressure-gradient force, pending for the next sub-cycle.
+  const std::vector<Stencil>& from = weights_at(x_flow_, p.d).stencil;
+  const std::vector<Stencil>& to = weights_at(p.x, p.d).stencil;
   for (std::size_t i = 0; i < n; ++i) {
-    const Vec a = face_mean(stencil(g, x_flow_[i], p.d[i], s_.width_factor), at_start);
-    const Vec b = face_mean(stencil(g, p.x[i], p.d[i], s_.width_factor), at_end);
+    const Vec a = face_mean(from[i], at_start);
+    const Vec b = face_mean(to[i], at_end);
     const double V = sphere_volume(p.d[i]);
     for (int c = 0; c < 3; ++c) pending_[i][c] = -V * (a[c] + b[c]);
   }

@@ -37,18 +37,15 @@ Exchange::Exchange(const flow::Grid& g, double width_factor) : g_(g), c_(width_f
     throw std::invalid_argument(fmt::format("coupling: kernel width factor {} below its minimum {}", width_factor, kMinWidthFactor));
 }
 
-std::array<std::vector<Exchange::Row>, 3> Exchange::rows(const ExchangeParticles& p, const flow::Faces& face_mass,
-                                                          const flow::Faces* paste_mask, std::vector<double>* share) const {
-  std::array<std::vector<Row>, 3> out;
-  if (share != nullptr) share->assign(p.centre.size(), 0.0);
-  for (int c = 0; c < 3; ++c) out[c].resize(p.centre.size());
+FaceWeights Exchange::face_weights(std::span<const Stencil> s) const {
+  FaceWeights out;
+  for (int c = 0; c < 3; ++c) out.offset[c].assign(1, 0);
   std::array<std::vector<std::pair<long, double>>, 3> acc;
-  for (std::size_t i = 0; i < p.centre.size(); ++i) {
-    const Stencil s = stencil(g_, p.centre[i], p.diameter[i], c_);
+  for (const Stencil& st : s) {
     for (auto& a : acc) a.clear();
-    for (const auto& [k, wk] : s.axis[2])
-      for (const auto& [j, wj] : s.axis[1])
-        for (const auto& [ii, wi] : s.axis[0]) {
+    for (const auto& [k, wk] : st.axis[2])
+      for (const auto& [j, wj] : st.axis[1])
+        for (const auto& [ii, wi] : st.axis[0]) {
           const std::array<int, 3> q{ii, j, k};
           const double half = 0.5 * wi * wj * wk;
           for (int c = 0; c < 3; ++c) {
@@ -60,13 +57,49 @@ std::array<std::vector<Exchange::Row>, 3> Exchange::rows(const ExchangeParticles
         }
     for (int c = 0; c < 3; ++c) {
       std::sort(acc[c].begin(), acc[c].end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-      Row& r = out[c][i];
-      double sum = 0.0, unmasked = 0.0;
       for (std::size_t e = 0; e < acc[c].size(); ++e) {
         const long f = acc[c][e].first;
         double w = acc[c][e].second;
         while (e + 1 < acc[c].size() && acc[c][e + 1].first == f) w += acc[c][++e].second;
-        if (wall_face(g_, c, f) || !(face_mass[c][f] > 0.0)) continue;
+        if (wall_face(g_, c, f)) continue;
+        out.face[c].push_back(f);
+        out.w[c].push_back(w);
+      }
+      out.offset[c].push_back(out.face[c].size());
+    }
+  }
+  return out;
+}
+
+Exchange::Rows Exchange::rows(const ExchangeParticles& p, const flow::Faces& face_mass, const flow::Faces* paste_mask,
+                              std::vector<double>* share) const {
+  const std::size_t n = p.centre.size();
+  FaceWeights own;
+  if (p.weights == nullptr) {
+    std::vector<Stencil> s(n);
+    for (std::size_t i = 0; i < n; ++i) s[i] = stencil(g_, p.centre[i], p.diameter[i], c_);
+    own = face_weights(s);
+  } else if (p.weights->size() != n) {
+    throw std::invalid_argument(fmt::format("coupling exchange: face weights of {} particles for {} particles",
+                                            p.weights->size(), n));
+  }
+  const FaceWeights& fw = p.weights != nullptr ? *p.weights : own;
+  Rows out;
+  if (share != nullptr) share->assign(n, 0.0);
+  for (int c = 0; c < 3; ++c) {
+    out[c].offset.reserve(n + 1);
+    out[c].face.reserve(fw.face[c].size());
+    out[c].w.reserve(fw.w[c].size());
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    for (int c = 0; c < 3; ++c) {
+      RowTable& r = out[c];
+      const std::size_t first = r.face.size();
+      double sum = 0.0, unmasked = 0.0;
+      for (std::size_t e = fw.offset[c][i]; e < fw.offset[c][i + 1]; ++e) {
+        const long f = fw.face[c][e];
+        double w = fw.w[c][e];
+        if (!(face_mass[c][f] > 0.0)) continue;
         unmasked += w;
         if (paste_mask != nullptr) {
           const double a = std::clamp((*paste_mask)[c][f], 0.0, 1.0);
@@ -78,10 +111,10 @@ std::array<std::vector<Exchange::Row>, 3> Exchange::rows(const ExchangeParticles
         sum += w;
       }
       if (sum > 0.0)
-        for (double& w : r.w) w /= sum;
+        for (std::size_t e = first; e < r.w.size(); ++e) r.w[e] /= sum;
+      r.offset.push_back(r.face.size());
       if (share != nullptr && unmasked > 0.0) (*share)[i] += sum / unmasked / 3.0;
     }
-  }
   return out;
 }
 
@@ -153,7 +186,7 @@ ExchangeStats Exchange::bound_reaction(const ExchangeParticles& p, const flow::F
     std::vector<double> reaction(u[c].size(), 0.0), lo(before[c]), hi(before[c]);
     for (std::size_t i = 0; i < n; ++i) {
       if (subcycle_impulse[i][c] == 0.0) continue;
-      const Row& r = W[c][i];
+      const Row r = W[c][i];
       r.spread(-subcycle_impulse[i][c], reaction);
       for (long f : r.face) lo[f] = std::min(lo[f], velocity[i][c]), hi[f] = std::max(hi[f], velocity[i][c]);
     }
@@ -179,7 +212,7 @@ ExchangeStats Exchange::bound_reaction(const ExchangeParticles& p, const flow::F
     if (!any) continue;
     for (std::size_t i = 0; i < n; ++i) {
       if (subcycle_impulse[i][c] == 0.0) continue;
-      const Row& r = W[c][i];
+      const Row r = W[c][i];
       double back = 0.0;  // N s: particle i's part of what its faces gave up
       for (std::size_t e = 0; e < r.face.size(); ++e) back -= given_up[r.face[e]] * r.w[e] * subcycle_impulse[i][c];
       returned[i][c] = back;

@@ -67,5 +67,7 @@ void deposit_faces(const flow::Grid& g, const Stencil& s, const std::array<doubl
 // diameters (m). Particles are added in order, serially: the result is independent of the thread count.
 std::vector<double> solid_fraction(const flow::Grid& g, std::span<const std::array<double, 3>> centres,
                                    std::span<const double> diameters, double width_factor);
+// The same from the particles' stencils at those centres (stencils[p] = stencil(g, centres[p], ...)).
+std::vector<double> solid_fraction(const flow::Grid& g, std::span<const Stencil> stencils, std::span<const double> diameters);
 
 }  // namespace pastemix::coupling

@@ -8,6 +8,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <span>
 #include <random>
 
 #include "model/coupling/kernel.h"
@@ -299,4 +301,56 @@ TEST_CASE("exchange: the bounded reaction brings a thin-paste face kicked past i
   CHECK(past > 0);
   std::vector<std::array<double, 3>> back;
   CHECK(ex.bound_reaction(p.view(), before, u, M, &mask, J, p.v, back).clipped_faces == 0);
+}
+
+// The face weights computed once per position set (Exchange::face_weights, what a coupling cycle keeps) give the
+// very numbers of computing them in every call, in a walled box (wall faces left out) with a paste mask, and
+// weights of another particle count are refused.
+TEST_CASE("exchange: precomputed face weights give the same bits as weights computed in the call") {
+  flow::Grid g;
+  g.n = {6, 5, 7};
+  g.h = {0.01, 0.011, 0.01};
+  g.check();
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> ux(0.0, 0.06), uy(0.0, 0.055), uz(0.0, 0.07), ud(0.003, 0.012);
+  Cloud p;
+  for (int i = 0; i < 40; ++i) {
+    p.x.push_back({ux(rng), uy(rng), uz(rng)});
+    p.d.push_back(ud(rng));
+    p.m.push_back(2760.0 * p.d.back() * p.d.back() * p.d.back());
+    p.beta.push_back(0.5 + i * 0.1);
+    p.yield.push_back(i % 3 == 0 ? 1e-4 : 0.0);
+    p.v.push_back({0.01 * i, -0.02, -0.1});
+  }
+  const flow::Faces M = faces(g, 1843.0 * g.cell_volume());
+  flow::Faces mask = faces(g, 1.0), u0 = faces(g, 0.0);
+  for (int c = 0; c < 3; ++c)
+    for (std::size_t f = 0; f < mask[c].size(); ++f) {
+      mask[c][f] = static_cast<double>(f % 7) / 6.0;  // 0 (air), thin and full paste faces
+      u0[c][f] = 1e-3 * static_cast<double>(f % 11);
+    }
+  const Exchange ex(g, 2.0);
+  std::vector<coupling::Stencil> st;
+  for (std::size_t i = 0; i < p.x.size(); ++i) st.push_back(coupling::stencil(g, p.x[i], p.d[i], 2.0));
+  const coupling::FaceWeights fw = ex.face_weights(st);
+  REQUIRE(fw.size() == p.x.size());
+  ExchangeParticles cached = p.view();
+  cached.weights = &fw;
+  auto same = [](const auto& a, const auto& b) { return std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0; };
+  std::vector<double> s1, s2;
+  const auto f1 = ex.fluid_velocity(p.view(), u0, M, &mask, s1), f2 = ex.fluid_velocity(cached, u0, M, &mask, s2);
+  CHECK(same(f1, f2));
+  CHECK(same(s1, s2));
+  Cloud q = p;
+  flow::Faces u1 = u0, u2 = u0;
+  std::vector<std::array<double, 3>> J1, J2;
+  ex.apply(1e-3, p.view(), p.v, u1, M, &mask, J1);
+  ex.apply(1e-3, cached, q.v, u2, M, &mask, J2);
+  CHECK(same(J1, J2));
+  CHECK(same(p.v, q.v));
+  for (int c = 0; c < 3; ++c) CHECK(same(u1[c], u2[c]));
+  const coupling::FaceWeights fewer = ex.face_weights(std::span(st).first(10));
+  cached.weights = &fewer;
+  CHECK_THROWS_WITH_AS(ex.fluid_velocity(cached, u0, M, &mask, s2), doctest::Contains("face weights of 10 particles"),
+                       std::invalid_argument);
 }
