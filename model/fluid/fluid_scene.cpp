@@ -112,16 +112,40 @@ void read_drag_law(const Params& f, const std::string& scene_path, FluidRegion& 
   });
 }
 
-// [[fluid]] dynamics (fluid_scene.h): "at_rest" (the default, nothing more is read) or "flow", whose grid,
-// kernel, coupling interval and regularisation are checked against the region and the domain and kept in r.
+constexpr const char* kFlowKeys[] = {"cell", "cells", "top", "kernel_width", "coupling_interval", "regularisation",
+                                     "flow_time_step", "implicit_stick"};
+
+void read_flow_numerics(const Params& f, FluidRegion& r, const Vec3& domain_max);
+
+// [[fluid]] dynamics (fluid_scene.h): "at_rest" (the default) or "flow", whose numerics (grid, kernel, coupling
+// interval, regularisation, sub-step, stick) are read from the region's table or from its [fluid.flow] sub-table,
+// checked against the region and the domain and kept in r. A region at rest may carry the sub-table: the frozen
+// numerics of its flow variant (issue 22: written into the mixing scenes before any flow score), read and
+// checked as for "flow" but not used; --set fluid.N.dynamics=flow then runs with them.
 void read_dynamics(const Params& f, FluidRegion& r, const Vec3& domain_max) {
   const bool flow = f.choice_or("dynamics", {"at_rest", "flow"}, "at_rest") == "flow";
+  const std::optional<Params> sub = f.optional_table("flow");
+  for (const char* key : kFlowKeys)
+    if (f.has(key)) {
+      if (sub) f.fail(key, fmt::format("{} is set both here and in the region's [fluid.flow] table: keep one", key));
+      if (!flow) f.fail(key, fmt::format("{} is a key of dynamics = \"flow\" (this region is at rest; a region at rest "
+                                         "keeps its flow numerics in a [fluid.flow] sub-table)", key));
+    }
   if (!flow) {
-    for (const char* key : {"cell", "cells", "top", "kernel_width", "coupling_interval", "regularisation", "flow_time_step",
-                            "implicit_stick"})
-      if (f.has(key)) f.fail(key, fmt::format("{} is a key of dynamics = \"flow\" (this region is at rest)", key));
+    if (sub) {
+      FluidRegion unused = r;
+      read_flow_numerics(*sub, unused, domain_max);
+    }
     return;
   }
+  if (r.collective)
+    f.fail("collective", "the bearing-capacity rule is for dynamics = \"at_rest\" only: with \"flow\" the paste's "
+                         "own stress carries a pile (set collective = \"none\")");
+  read_flow_numerics(sub ? *sub : f, r, domain_max);
+}
+
+// The flow numerics of read_dynamics, from the table that holds them.
+void read_flow_numerics(const Params& f, FluidRegion& r, const Vec3& domain_max) {
   if (f.has("cell") == f.has("cells"))
     f.fail(f.has("cell") ? "cells" : "dynamics",
            "dynamics = \"flow\" needs the flow grid, one of: cell = SIZE (m, cubic cells that tile the region) or "
@@ -173,9 +197,6 @@ void read_dynamics(const Params& f, FluidRegion& r, const Vec3& domain_max) {
     f.fail("kernel_width", fmt::format("kernel_width = {:g} is below its minimum {} (model/coupling/kernel.h: a "
                                        "narrower kernel puts a single sphere's solid fraction above 1)",
                                        c, coupling::kMinWidthFactor));
-  if (r.collective)
-    f.fail("collective", "the bearing-capacity rule is for dynamics = \"at_rest\" only: with \"flow\" the paste's "
-                         "own stress carries a pile");
   const long interval = f.integer_or("coupling_interval", 1);
   if (interval < 1) f.fail("coupling_interval", fmt::format("coupling_interval = {} must be >= 1 (DEM steps per flow interval)", interval));
   // A yield-stress paste in the flow solver is regularised (model/flow/bingham.h); m is part of every result,

@@ -17,6 +17,7 @@
 
 #include "base/error.h"
 #include "model/scene.h"
+#include "model/scene_doc.h"
 #include "tests/run_command.h"
 
 using namespace pastemix;
@@ -155,4 +156,46 @@ TEST_CASE("fluid scene: implicit_stick is off by default, a boolean, and a key o
   CHECK_FALSE(load_scene(d.path / "scene.toml").fluid[0].implicit_stick);
   std::ofstream(d.path / "scene.toml") << with(tiny_scene(), "#DYN", flow + "implicit_stick = true");
   CHECK(load_scene(d.path / "scene.toml").fluid[0].implicit_stick);
+}
+
+// A region at rest may carry its flow variant's numerics in a [fluid.flow] sub-table (the mixing scenes' frozen
+// numerics, issue 22): they are checked as for "flow" (file and line of the sub-table's key) but unused until
+// dynamics = "flow" is set; the same key in the region and the sub-table, or a flow key in the region of a
+// region at rest, is an error.
+TEST_CASE("fluid scene: a [fluid.flow] sub-table holds the flow numerics, checked at rest and used with dynamics = flow") {
+  Dir d;
+  const std::string numerics = "[fluid.flow]\ncells = [6, 6, 15]\ntop = 0.15\nkernel_width = 2.0\nregularisation = 100.0\n"
+                               "coupling_interval = 50\nimplicit_stick = true\n\n[[factory]]";
+  // dynamics written out, so that an override can switch it (overrides replace keys the scene has).
+  const std::string at_rest = with(with(tiny_scene(), "[[factory]]", numerics), "#DYN", "dynamics = \"at_rest\"\n#DYN");
+  CHECK(error_of(d, at_rest).empty());
+  std::ofstream(d.path / "scene.toml") << at_rest;
+  const Scene rest = load_scene(d.path / "scene.toml");
+  CHECK_FALSE(rest.fluid[0].flow);
+  CHECK(rest.plan.fluid);
+  CHECK_FALSE(rest.plan.flow);
+  const Scene flow = model::load_scene(d.path / "scene.toml", std::vector<std::string>{"fluid.0.dynamics=\"flow\""});
+  CHECK(flow.plan.flow);
+  CHECK(flow.fluid[0].flow);
+  CHECK(flow.fluid[0].flow_cells == std::array<int, 3>{6, 6, 15});
+  CHECK(flow.fluid[0].coupling_interval == 50);
+  CHECK(flow.fluid[0].regularisation == 100.0);
+  CHECK(flow.fluid[0].implicit_stick);
+  // Checked while at rest, with the sub-table's line; an unknown key there is named too.
+  says(error_of(d, with(at_rest, "cells = [6, 6, 15]", "cells = [6, 4, 15]")), "more than 1.2 apart");
+  says(error_of(d, with(at_rest, "coupling_interval = 50", "coupling_interval = 50\ncoupling_intervall = 5")),
+       "coupling_intervall");
+  says(error_of(d, with(at_rest, "#DYN", "top = 0.15")), "set both here and in the region's [fluid.flow] table");
+  says(error_of(d, with(tiny_scene(), "#DYN", "top = 0.15")), "keeps its flow numerics in a [fluid.flow] sub-table");
+  // The collective rule of the region at rest must be switched off with it.
+  const std::string collective = with(at_rest, "#DYN", "collective = \"bearing_capacity\"");
+  CHECK(error_of(d, collective).empty());
+  std::ofstream(d.path / "scene.toml") << collective;
+  try {
+    model::load_scene(d.path / "scene.toml", std::vector<std::string>{"fluid.0.dynamics=\"flow\""});
+    FAIL("the collective rule was accepted with dynamics = flow");
+  } catch (const InputError& e) {
+    CHECK(std::string(e.what()).find("set collective = \"none\"") != std::string::npos);
+  }
+  CHECK(model::load_scene(d.path / "scene.toml", std::vector<std::string>{"fluid.0.dynamics=\"flow\"", "fluid.0.collective=\"none\""}).fluid[0].flow);
 }
