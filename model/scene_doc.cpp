@@ -2,6 +2,7 @@
 #include "model/scene_doc.h"
 
 #include <charconv>
+#include <cctype>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -209,9 +210,7 @@ void SceneDoc::set_from(const std::string& path, const std::string& literal, con
   const toml::node* n = walk(tree_->root, path, &deepest);
   const EditOrigin at = from ? *from : EditOrigin{path_, line_of_node(n ? n : deepest), ""};
   const std::string in_scene = from ? fmt::format(" (in the scene {})", path_) : "";
-  if (!n)
-    throw InputError(at.file, at.line, path,
-                     "unknown key path (overrides only replace keys the scene already has)" + in_scene);
+  if (!n) return add_from(path, literal, at, in_scene, note);
   const auto want = n->type();
   if (want == toml::node_type::table) throw InputError(at.file, at.line, path, "is a table; override its keys one by one");
   std::string text = literal;
@@ -226,6 +225,26 @@ void SceneDoc::set_from(const std::string& path, const std::string& literal, con
                      "expects " + article(type_name(want)) + ", got " + article(type_name(got)) + " ('" + literal +
                          "')" + in_scene);
   record(path, text, at, note);
+}
+
+// An override of a key the scene does not have adds it, to a table the scene has (an array element or the
+// table itself must exist: `fluid.0.dynamics` adds to the first [[fluid]], `fluid.3.x` with one region is an
+// error). There is no type to check against; the scene reader checks the key and its value (an unknown or
+// misspelled key is an error at `at`, the overrides file's line), so the shipped flow variant of the mixing
+// scenes (datasets/scenes/mixing_flow.overrides.toml) needs no edit of their files, whose text the studies'
+// run caches are keyed by (scene_hash).
+void SceneDoc::add_from(const std::string& path, const std::string& literal, const EditOrigin& at,
+                        const std::string& in_scene, const std::string& note) {
+  const auto dot = path.rfind('.');
+  const std::string owner = dot == std::string::npos ? "" : path.substr(0, dot), key = path.substr(dot + 1);
+  const toml::node* deepest = nullptr;
+  const toml::node* table = owner.empty() ? &tree_->root : walk(tree_->root, owner, &deepest);
+  if (table == nullptr || !table->is_table() || key.empty() || std::isdigit(static_cast<unsigned char>(key[0])))
+    throw InputError(at.file, at.line, path,
+                     "unknown key path (an override replaces a key of the scene or adds one to a table it has)" + in_scene);
+  if (!parse_literal(literal, at))
+    throw InputError(at.file, at.line, path, "'" + literal + "' is not a TOML value (a new key takes no bare word)");
+  record(path, literal, at, note);
 }
 
 // The edit itself, replayable: the literal is parsed anew each time (a moved node keeps its source).

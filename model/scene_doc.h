@@ -9,9 +9,11 @@
 //
 // User overrides (apply, apply_file, set) take TOML literals ("2e-6", "[0, 0, 0.01]", "\"elastic_plastic\"",
 // "true"); a bare word is taken as a string when the key holds a string. The new value must have the type of
-// the old one (an integer may replace a float, not the reverse), and the path must exist: overrides never add
-// keys, since a misspelt path would otherwise be silently ignored. Both errors are InputError naming where the
-// user wrote the override (the overrides file and its line; for --set the scene file and the key's line).
+// the old one (an integer may replace a float, not the reverse). A path the scene lacks adds the key to a
+// table the scene has (`fluid.0.dynamics`; a missing table or array element is an error): it has no old type,
+// and the scene loader checks it like any key, so a misspelt one is an unknown-key error at the override's
+// line, not silently ignored. These errors are InputError naming where the user wrote the override (the
+// overrides file and its line; for --set the scene file and the key's line).
 //
 // Errors found later by the scene loader name the text the user wrote: a key of the scene file its own line
 // there (the document is read as parsed, never re-serialised first), a value from an overrides file that
@@ -84,6 +86,8 @@ class SceneDoc {
   void set_from(const std::string& path, const std::string& literal, const std::optional<EditOrigin>& from,
                 const std::string& note);
   void record(const std::string& path, const std::string& literal, const EditOrigin& at, const std::string& note);
+  void add_from(const std::string& path, const std::string& literal, const EditOrigin& at, const std::string& in_scene,
+                const std::string& note);
   void edit(std::function<void(Tree&)> change);
   const Tree& tree() const { return *tree_; }
   std::string path_;

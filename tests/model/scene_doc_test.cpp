@@ -71,12 +71,31 @@ TEST_CASE("overrides reach the scene: top-level, nested, array element by name a
   CHECK(s.path == "s.toml");
 }
 
+TEST_CASE("an override adds a key the scene lacks to a table it has, checked by the loader like any key") {
+  SceneDoc d = SceneDoc::parse(kScene, "s.toml");
+  d.apply("contact.rolling_model=\"x\"");
+  CHECK(d.has("contact.rolling_model"));
+  CHECK_THROWS_WITH_AS(d.load(), doctest::Contains("unknown key"), InputError);
+  SceneDoc e = SceneDoc::parse(kScene, "s.toml");
+  e.apply("particle.0.velocity=[0, 0, -1]");  // a key the loader knows, absent from the scene
+  CHECK(e.load().particles.v[0].z == -1.0);
+}
+
 TEST_CASE("override errors name the file, the line and the path") {
-  const InputError unknown = error_of("material.rock.youngs_modulu=1e9");
+  // A misspelt key is added to its table and refused by the loader, at the table's line, with the --set.
+  SceneDoc misspelt = SceneDoc::parse(kScene, "s.toml");
+  misspelt.apply("material.rock.youngs_modulu=1e9");
+  CHECK_THROWS_WITH_AS(misspelt.load(),
+                       doctest::Contains("s.toml:10: key 'youngs_modulu' (--set material.rock.youngs_modulu=1e9): "
+                                         "unknown key (did you mean 'youngs_modulus'?)"),
+                       InputError);
+  // A table or array element the scene lacks is an error of the override itself.
+  const InputError unknown = error_of("material.granite.density=1");
   CHECK(unknown.file() == "s.toml");
-  CHECK(unknown.line() == 10);  // the [[material]] table that was found
-  CHECK(unknown.field() == "material.rock.youngs_modulu");
-  CHECK(error_of("material.granite.density=1").field() == "material.granite.density");
+  CHECK(unknown.field() == "material.granite.density");
+  CHECK(std::string(unknown.what()).find("unknown key path") != std::string::npos);
+  CHECK(error_of("particle.3.radius=1").field() == "particle.3.radius");
+  CHECK(std::string(error_of("domain.size=[1, 2, banana]").what()).find("is not a TOML value") != std::string::npos);
   const InputError type = error_of("time_step=\"fast\"");
   CHECK(type.line() == 2);
   CHECK(std::string(type.what()).find("expects a float, got a string") != std::string::npos);
