@@ -199,3 +199,35 @@ TEST_CASE("fluid scene: a [fluid.flow] sub-table holds the flow numerics, checke
   }
   CHECK(model::load_scene(d.path / "scene.toml", std::vector<std::string>{"fluid.0.dynamics=\"flow\"", "fluid.0.collective=\"none\""}).fluid[0].flow);
 }
+
+// The shipped flow variant of the mixing scenes (issue 22's frozen numerics): every case takes the overrides file
+// (its keys are added to the one [[fluid]] region); case 3, whose paste is typed in, loads as a flow region
+// with them, and without the file as the at-rest scene it was. (The other cases read their paste from the lab
+// store, out/lab/parameters.toml, made by the main job.)
+TEST_CASE("fluid scene: the mixing scenes with mixing_flow.overrides.toml are flow regions with the frozen numerics") {
+  const fs::path overrides = test::source_path("datasets/scenes/mixing_flow.overrides.toml");
+  for (int c = 1; c <= 7; ++c) {
+    CAPTURE(c);
+    SceneDoc d = SceneDoc::parse_file(test::source_path(fmt::format("datasets/scenes/mixing_case{}.toml", c)));
+    CHECK_FALSE(d.has("fluid.0.dynamics"));
+    d.apply_file(overrides);
+    CHECK(d.string("fluid.0.dynamics") == "flow");
+    CHECK(d.string("fluid.0.collective") == "none");
+    CHECK(d.number("time_step") == 2e-5);
+  }
+  SceneDoc c3 = SceneDoc::parse_file(test::source_path("datasets/scenes/mixing_case3.toml"));
+  CHECK_FALSE(c3.load().fluid[0].flow);
+  c3.apply_file(overrides);
+  const Scene s = c3.load();
+  REQUIRE(s.fluid.size() == 1);
+  const fluid::FluidRegion& r = s.fluid[0];
+  CHECK(r.flow);
+  CHECK_FALSE(r.collective);
+  CHECK(r.flow_cells == std::array<int, 3>{20, 16, 15});
+  CHECK(r.flow_top == 0.15);
+  CHECK(r.kernel_width == 2.0);
+  CHECK(r.regularisation == 100.0);
+  CHECK(r.coupling_interval == 50);
+  CHECK(r.implicit_stick);
+  CHECK(s.end_time == 10.0);
+}
