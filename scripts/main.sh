@@ -24,30 +24,49 @@ $px lab reduce datasets/thesis --out "$out/lab" \
 $px lab drag-fit datasets/thesis --out "$out/drag" > "$out/drag.log" 2>&1 || { cat "$out/drag.log"; exit 1; }
 t_lab=$(stamp)
 
-# 2. Case 3 with the measured yield stress from the parameter store, at the time step chosen by the
-#    case-3 time-step study (datasets/scenes/mixing_fast.overrides.toml).
+# 2. Case 3 (75 % paste) with the measured yield stress and density from the parameter store, twice, side by
+#    side: "at rest" (the shipped scene at the step of the case-3 time-step study, mixing_fast.overrides.toml)
+#    and "flow" (the paste moving, with the frozen numerics of mixing_flow.overrides.toml, issue 22). Each run
+#    gets half the threads: results do not depend on the thread count, and the flow pass runs mostly on one
+#    thread, so two one-thread runs side by side end sooner than one two-thread run after the other.
 tau=$($px lab param "$out/lab/parameters.toml" paste.yield_stress)
 rho=$($px lab param "$out/lab/parameters.toml" paste.density)
-mkdir -p "$out/case3"
-# The scene ends when its rock is at rest ([stop] in the scene, model/stop_rule.h).
-$px run datasets/scenes/mixing_case3.toml --overrides datasets/scenes/mixing_fast.overrides.toml \
-  --set "fluid.0.yield_stress=$tau" --set "fluid.0.density=$rho" --threads "$threads" --out "$out/case3" \
-  2>&1 | tee "$out/case3/run.log"
+each=$(( threads / 2 > 0 ? threads / 2 : 1 ))
+run_case3() {  # OUTDIR OVERRIDES: the scene ends when its rock is at rest ([stop] in the scene, model/stop_rule.h)
+  mkdir -p "$1"
+  $px run datasets/scenes/mixing_case3.toml --overrides "$2" --set "fluid.0.yield_stress=$tau" \
+    --set "fluid.0.density=$rho" --threads "$each" --quiet --out "$1" > "$1/run.log" 2>&1
+}
+echo "case 3: at rest and with flow, side by side ($each thread(s) each); logs in $out/case3/run.log, $out/case3_flow/run.log"
+run_case3 "$out/case3" datasets/scenes/mixing_fast.overrides.toml & rest_pid=$!
+run_case3 "$out/case3_flow" datasets/scenes/mixing_flow.overrides.toml & flow_pid=$!
+ok=1
+wait "$rest_pid" || { tail -20 "$out/case3/run.log"; ok=0; }
+wait "$flow_pid" || { tail -20 "$out/case3_flow/run.log"; ok=0; }
+((ok)) || exit 1
 t_run=$(stamp)
 
-# 3. Mixing maps and the score against the lab's case-3 grid (Table 3.2).
-$px maps "$out/case3/mixing_case3.h5" --lab 3 --lab-h5 "$out/lab/lab.h5" --out "$out/case3/maps" > "$out/case3/maps.txt"
-$px score "$out/case3/mixing_case3.h5" --lab 3 --lab-h5 "$out/lab/lab.h5" --out "$out/case3/score" \
-  > "$out/case3/score.txt"
+# 3. Mixing maps and the score against the lab's case-3 grid (Table 3.2), for both runs (a flow result's maps
+#    read its paste field: analysis/maps/paste_field.h).
+for d in case3 case3_flow; do
+  $px maps "$out/$d/mixing_case3.h5" --lab 3 --lab-h5 "$out/lab/lab.h5" --out "$out/$d/maps" > "$out/$d/maps.txt"
+  $px score "$out/$d/mixing_case3.h5" --lab 3 --lab-h5 "$out/lab/lab.h5" --out "$out/$d/score" > "$out/$d/score.txt"
+done
 t_all=$(stamp)
 
+summary_of() {  # DIR TITLE
+  echo "== case 3, $2"
+  grep -E "^stop: |^WARNING: end_time" "$out/$1/run.log" || true
+  grep -E "^  total wall" "$out/$1/run.log" || true
+  sed -n '/^HEADLINE/,/^mean absolute C error/p' "$out/$1/score.txt"
+  grep -E "^S values|^S classes|^rock: poured" "$out/$1/score.txt"
+}
 {
   echo "pastemix main job ($(git rev-parse --short HEAD 2>/dev/null || echo unknown), $(date -u +%FT%TZ), $threads threads)"
   echo "lab: paste yield stress $tau Pa, density $rho kg/m3 (out/lab/parameters.toml); drag curve: out/drag/"
-  grep -E "^stop: |^WARNING: end_time" "$out/case3/run.log" || true
-  sed -n '/^HEADLINE/,/^mean absolute C error/p' "$out/case3/score.txt"
-  grep -E "^rock: poured" "$out/case3/score.txt"
-  echo "times: lab ${t_lab} s, case-3 simulation $(awk -v a="$t_run" -v b="$t_lab" 'BEGIN{printf "%.1f", a-b}') s, total ${t_all} s"
-  echo "outputs: $out/lab/*.png, $out/drag/*.png, $out/case3/mixing_case3.h5 (+ .xmf for ParaView), $out/case3/score/*.png"
+  summary_of case3 "the paste at rest (datasets/scenes/mixing_fast.overrides.toml)"
+  summary_of case3_flow "the paste moving (dynamics = flow, datasets/scenes/mixing_flow.overrides.toml)"
+  echo "times: lab ${t_lab} s, case-3 simulations (both, side by side) $(awk -v a="$t_run" -v b="$t_lab" 'BEGIN{printf "%.1f", a-b}') s, total ${t_all} s"
+  echo "outputs: $out/lab/*.png, $out/drag/*.png, $out/case3{,_flow}/mixing_case3.h5 (+ .xmf for ParaView), $out/case3{,_flow}/score/*.png"
 } | tee "$out/summary.txt"
 echo "main job: done in ${t_all} s; outputs in $out/"
