@@ -124,7 +124,7 @@ void register_rheology(CLI::App* cal) {
   r->add_option("--case", c->o.case_id, "mixing case (the protocol: 2)")->required();
   r->add_option("--family", c->o.family, "exponential | packing (default: the store's)");
   r->add_option("--seeds", c->o.seeds, "seeds per point, the same at every point (default 3)");
-  r->add_option("--jobs", c->o.jobs, "runs at once, one thread each (default 1)");
+  r->add_option("--jobs", c->o.jobs, "runs at once, one thread each when more than 1 (default 1: one run with the OpenMP threads; OMP_NUM_THREADS=1 for one thread)");
   r->add_option("--points", c->o.points, "initial points across the prior range (default 5)");
   r->add_option("--refine", c->o.refine, "refinement rounds around the surrogate's minimum (default 1)");
   r->add_option("--values", c->o.values, "initial points (replace the grid)");
@@ -303,7 +303,7 @@ void register_rolling_resistance(CLI::App* cal) {
   rr->add_option("--values", c->o.values, "initial mu_r points (replace the even grid)");
   rr->add_option("--seeds", c->o.seeds, "runs per mu_r, the same seeds at every mu_r (default 3)");
   rr->add_option("--refine", c->o.refine, "rounds adding mu* -+ max(2 sd, 5 % of the range) (default 1)");
-  rr->add_option("--jobs", c->o.jobs, "runs at once, one thread each (default 1)");
+  rr->add_option("--jobs", c->o.jobs, "runs at once, one thread each when more than 1 (default 1: one run with the OpenMP threads; OMP_NUM_THREADS=1 for one thread)");
   rr->add_option("--overrides", c->overrides, "file of key.path = value lines, applied before --set");
   rr->add_option("--set", c->sets, "scene override key.path=value");
   rr->add_option("--out", c->o.out, "folder whose runs/ keeps every finished pile, read back by a rerun "
@@ -337,7 +337,7 @@ void register_predict(CLI::App& app) {
   r->add_option("--cases", c->o.cases, "mixing cases (default 1,4,5,6,7)")->delimiter(',');
   r->add_option("--seeds", c->o.seeds, "seeds per value, the same at every value and case (default 3)");
   r->add_option("--seed0", c->seed0, "first seed (default: each scene's own seed)");
-  r->add_option("--jobs", c->o.jobs, "runs at once, one thread each (default 1)");
+  r->add_option("--jobs", c->o.jobs, "runs at once, one thread each when more than 1 (default 1: one run with the OpenMP threads; OMP_NUM_THREADS=1 for one thread)");
   r->add_option("--scenes", c->o.scenes, "folder of mixing_case<N>.toml (default datasets/scenes)");
   r->add_option("--overrides", c->o.overrides, "file of key.path = value lines for every scene (the only physics "
                                                "edit; stated in band.txt)");
