@@ -120,7 +120,7 @@ void read_flow_numerics(const Params& f, FluidRegion& r, const Vec3& domain_max)
 // [[fluid]] dynamics (fluid_scene.h): "at_rest" (the default) or "flow", whose numerics (grid, kernel, coupling
 // interval, regularisation, sub-step, stick) are read from the region's table or from its [fluid.flow] sub-table,
 // checked against the region and the domain and kept in r. A region at rest may carry the sub-table: the frozen
-// numerics of its flow variant (issue 22: written into the mixing scenes before any flow score), read and
+// numerics of its flow variant (the shipped mixing scenes use mixing_flow.overrides.toml instead), read and
 // checked as for "flow" but not used; --set fluid.N.dynamics=flow then runs with them.
 void read_dynamics(const Params& f, FluidRegion& r, const Vec3& domain_max) {
   const bool flow = f.choice_or("dynamics", {"at_rest", "flow"}, "at_rest") == "flow";

@@ -43,7 +43,8 @@
 //   [fluid.flow]                         # or: the flow keys above in this sub-table of the region (not both).
 //                                        # A region at rest may carry it: the frozen numerics of its flow
 //                                        # variant, checked as for "flow" but unused until
-//                                        # --set fluid.N.dynamics=flow (the mixing scenes, issue 22)
+//                                        # --set fluid.N.dynamics=flow (the shipped mixing
+//                                        # scenes use datasets/scenes/mixing_flow.overrides.toml)
 //
 // Checks: positive density and viscosities, non-negative yield stress, extents min < max, surface above the
 // bottom, a known curve with admissible coefficients (exactly one of curve / curve_from); with dynamics =
