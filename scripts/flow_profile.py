@@ -2,9 +2,10 @@
 """Issue 22: why a flow run misses the lab's unmixed cone, measured. A vertical profile of the final state in a
 column of the block grid (default the centre column, blocks M_22k and M_32k: x 5-15 cm, y 5.5-11 cm):
 per flow cell layer (1 cm), the rock's volume fraction (each sphere sliced exactly by the layer's planes, counted
-where its centre lies in the column), the mean paste fraction alpha of the flow cells, and the paste's share of
-the pore space there (alpha / (1 - rock), the void filling the lab's S measures). A result without a flow field
-(at rest) gets the flat surface instead: paste below it, none above.
+where its centre lies in the column), the paste's share of the pore space (the flow's alpha, the paste share of
+the fluid volume, averaged over the column's cells: the void filling the lab's S measures) and the paste's
+volume fraction of the layer (that share times 1 - rock). A result without a flow field (at rest) gets the flat
+surface instead: the pores below it full of paste, none above.
 
     /usr/bin/python3 scripts/flow_profile.py RESULT.h5 [--x 0.05 0.15] [--y 0.055 0.11] [--png OUT.png]
 """
@@ -72,20 +73,16 @@ def main():
             source = f"at rest: paste below the flat surface z = {surface:.4f} m"
     rock = rock_fraction(pos, rad, a.x, a.y, edges)
     print(f"{a.result}: t = {t:.3f} s; column x {a.x[0]}-{a.x[1]} m, y {a.y[0]}-{a.y[1]} m; paste from {source}")
-    print(f"{'z cm':>11} | {'rock vol':>8} | {'paste (alpha)':>13} | {'paste / pores':>13}")
+    print(f"{'z cm':>11} | {'rock vol':>8} | {'paste / pores':>13} | {'paste vol':>9}")
     rows = []
     for k in range(len(edges) - 2, -1, -1):
         lo, hi = edges[k], edges[k + 1]
-        if paste is not None:
-            p = float(paste[k])
-        else:
-            p = float(np.clip((surface - lo) / (hi - lo), 0.0, 1.0)) * (1.0 - rock[k])
+        share = float(paste[k]) if paste is not None else float(np.clip((surface - lo) / (hi - lo), 0.0, 1.0))
+        p = share * (1.0 - rock[k])
         if rock[k] < 1e-4 and p < 1e-4 and lo > 0.1:
             continue
-        pores = 1.0 - rock[k]
-        share = p / pores if pores > 1e-9 else float("nan")
         rows.append((lo, hi, rock[k], p, share))
-        print(f"{100 * lo:5.1f}-{100 * hi:4.1f} | {rock[k]:8.3f} | {p:13.3f} | {share:13.3f}")
+        print(f"{100 * lo:5.1f}-{100 * hi:4.1f} | {rock[k]:8.3f} | {share:13.3f} | {p:9.3f}")
     if a.png:
         import matplotlib
         matplotlib.use("Agg")
@@ -93,7 +90,7 @@ def main():
         z = [100 * (r[0] + r[1]) / 2 for r in rows]
         fig, ax = plt.subplots(figsize=(4.5, 5))
         ax.plot([r[2] for r in rows], z, "o-", label="rock volume fraction")
-        ax.plot([r[3] for r in rows], z, "s-", label="paste fraction")
+        ax.plot([r[4] for r in rows], z, "s-", label="paste share of the pores")
         ax.set_xlabel("volume fraction")
         ax.set_ylabel("z (cm)")
         ax.set_title(f"centre column, t = {t:.2f} s")
