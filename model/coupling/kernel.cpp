@@ -131,22 +131,26 @@ double weight_sum(const Stencil& s) {
   return s.empty() ? 0.0 : total;
 }
 
+namespace {
+// A sphere's volume over the cell's (inv_cell = 1 / V_cell), the solid fraction it deposits in all.
+double solid_amount(double d, double inv_cell) { return std::numbers::pi / 6.0 * d * d * d * inv_cell; }
+}  // namespace
+
 std::vector<double> solid_fraction(const flow::Grid& g, std::span<const std::array<double, 3>> centres,
                                    std::span<const double> diameters, double width_factor) {
   if (centres.size() != diameters.size()) throw std::invalid_argument("coupling: centres and diameters differ in count");
-  std::vector<Stencil> s(centres.size());
-  for (std::size_t p = 0; p < centres.size(); ++p) s[p] = stencil(g, centres[p], diameters[p], width_factor);
-  return solid_fraction(g, s, diameters);
+  std::vector<double> eps(g.cell_count(), 0.0);
+  const double inv_cell = 1.0 / g.cell_volume();
+  for (std::size_t p = 0; p < centres.size(); ++p)  // one stencil at a time: nothing kept
+    deposit(g, stencil(g, centres[p], diameters[p], width_factor), solid_amount(diameters[p], inv_cell), eps);
+  return eps;
 }
 
 std::vector<double> solid_fraction(const flow::Grid& g, std::span<const Stencil> stencils, std::span<const double> diameters) {
   if (stencils.size() != diameters.size()) throw std::invalid_argument("coupling: stencils and diameters differ in count");
   std::vector<double> eps(g.cell_count(), 0.0);
   const double inv_cell = 1.0 / g.cell_volume();
-  for (std::size_t p = 0; p < stencils.size(); ++p) {
-    const double d = diameters[p];
-    deposit(g, stencils[p], std::numbers::pi / 6.0 * d * d * d * inv_cell, eps);
-  }
+  for (std::size_t p = 0; p < stencils.size(); ++p) deposit(g, stencils[p], solid_amount(diameters[p], inv_cell), eps);
   return eps;
 }
 
