@@ -31,7 +31,7 @@ namespace pastemix::model {
 namespace {
 
 // Bumped whenever a stored member is added, removed or reordered.
-constexpr char kMagic[] = "pastemix-checkpoint-v4";
+constexpr char kMagic[] = "pastemix-checkpoint-v5";
 
 // The members in one fixed order, for both directions: io(x) is put(x) or get(x).
 template <class IO>
@@ -87,7 +87,7 @@ struct CheckpointAccess {
   }
   template <class IO, class R>
   static void rest_state(IO& io, R& r) {
-    io(r.passed_), io(r.fired_);
+    io(r.passed_), io(r.fired_), io(r.last_step_), io(r.prev_), io(r.known_), io(r.have_prev_);
   }
   template <class IO, class O>
   static void output_state(IO& io, O& o) {

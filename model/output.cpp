@@ -167,6 +167,12 @@ void RunOutput::snapshot(const World& w) {
   snap_counts_.push_back(p.size());
 }
 
+void RunOutput::mean_speed(const std::vector<double>& by_id) {
+  if (snap_times_.empty() || by_id.size() != snap_counts_.back())
+    throw std::logic_error("mean_speed: no last snapshot of the same particles");
+  h5_->write(group(snap_times_.size() - 1) + "/mean_speed", by_id, {by_id.size()});
+}
+
 void RunOutput::sample(const World& w) {
   const Energies e = w.energies();
   t_.push_back(w.time());
@@ -187,6 +193,7 @@ void RunOutput::stop_outcome(const StopOutcome& o, const StopRule& rule) {
   h5_->attribute("/", "stop_speed_m_s", rule.speed);
   h5_->attribute("/", "stop_paste_speed_m_s", rule.paste_speed);
   h5_->attribute("/", "stop_moving_mass_limit_kg", rule.moving_mass);
+  h5_->attribute("/", "stop_measure", rule.measure == RestMeasure::displacement ? "displacement" : "velocity");
   h5_->attribute("/", "moving_mass_kg", o.last.moving_mass);
   h5_->attribute("/", "in_flight_mass_kg", o.last.in_flight_mass);
   h5_->attribute("/", "moving_count", static_cast<std::int64_t>(o.last.moving_count));

@@ -21,7 +21,8 @@
 //   /snapshots/time           (S) s
 //   /snapshots/NNNNNN/        one group per snapshot (attribute time_s):
 //       position (N x 3, m), velocity (N x 3, m/s), radius (N, m), id (N, int64), material (N, int32),
-//       angular_velocity (N x 3, rad/s; only with rotation)
+//       angular_velocity (N x 3, rad/s; only with rotation); the last snapshot of a run whose [stop] rule
+//       measures by displacement also mean_speed (N, m/s: |x(t) - x(t - check_interval)| / check_interval)
 //   outflow: root attributes on_exit ("stop" | "remove"), escaped_count, escaped_mass (kg; 0 with "stop"),
 //                             max_escaped_fraction (with "remove"); /escaped/ one entry per particle
 //                             removed at the domain boundary, in order of removal (empty datasets if none):
@@ -66,6 +67,8 @@ class RunOutput {
   RunOutput(const std::filesystem::path& h5_path, std::string h5_final_name, const Scene& scene);
   ~RunOutput();
   void snapshot(const World& w);
+  // The last snapshot's mean_speed dataset (N, m/s, id order): the [stop] displacement measure's speeds.
+  void mean_speed(const std::vector<double>& by_id);
   void sample(const World& w);
   // How the run ended (model/stop_rule.h): root attributes stop_*, written once before finish().
   void stop_outcome(const StopOutcome& o, const StopRule& rule);

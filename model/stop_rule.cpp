@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <fmt/format.h>
 
@@ -24,22 +25,25 @@ StopRule parse_stop_rule(const Params& root) {
   const long hold = t->integer_or("hold", r.hold);
   if (hold < 1 || hold > 1000) t->fail("hold", fmt::format("must be 1..1000 consecutive checks, got {}", hold));
   r.hold = static_cast<int>(hold);
+  r.measure = t->choice_or("measure", {"velocity", "displacement"}, "velocity") == "displacement"
+                  ? RestMeasure::displacement
+                  : RestMeasure::velocity;
   // start >= end_time is allowed (a shortened look with --set end_time=...): the run then ends at end_time
   // with the not-at-rest warning.
   if (!r.at_rest)
-    for (const char* k : {"speed", "paste_speed", "moving_mass", "check_interval", "start", "hold"})
+    for (const char* k : {"speed", "paste_speed", "moving_mass", "check_interval", "start", "hold", "measure"})
       if (t->has(k)) t->fail(k, "only with rule = \"at_rest\"");
   return r;
 }
 
-MotionCensus census(const World& w, const StopRule& rule) {
+MotionCensus census(const World& w, const StopRule& rule, const std::vector<double>* speeds) {
   MotionCensus c;
   const Particles& p = w.particles();
   const fluid::FluidField* f = w.fluid();
   for (std::size_t a = 0; a < p.size(); ++a) {
     const double m = p.mass[a];
     const Vec3& x = p.x[a];
-    const double speed = std::sqrt(norm2(p.v[a]));
+    const double speed = speeds ? (*speeds)[a] : std::sqrt(norm2(p.v[a]));
     c.total_mass += m;
     c.max_speed = std::max(c.max_speed, speed);
     // Submerged: centre inside a region's box, below its current surface.
@@ -62,9 +66,61 @@ RestMonitor::RestMonitor(const StopRule& rule, double dt, long total_steps)
 
 bool RestMonitor::check(const World& w, long step) {
   if (!rule_.at_rest || fired_ || step % every_ != 0 || w.time() < rule_.start - 0.5 * dt_) return fired_;
-  passed_ = census(w, rule_).settled(rule_) ? passed_ + 1 : 0;
+  last_step_ = step;
+  if (rule_.measure == RestMeasure::velocity) {
+    passed_ = census(w, rule_).settled(rule_) ? passed_ + 1 : 0;
+  } else {
+    // The first check only records where the particles are: a mean speed needs two.
+    const bool first = !have_prev_;
+    speeds_ = displacement_speeds(w);
+    record(w);
+    passed_ = !first && census(w, rule_, &speeds_).settled(rule_) ? passed_ + 1 : 0;
+  }
   fired_ = passed_ >= rule_.hold;
   return fired_;
+}
+
+// |x - x_prev| / (every_ dt) per particle in storage order; +infinity (moving) for a particle not recorded then.
+std::vector<double> RestMonitor::displacement_speeds(const World& w) const {
+  const Particles& p = w.particles();
+  const double interval = static_cast<double>(every_) * dt_;
+  std::vector<double> s(p.size(), std::numeric_limits<double>::infinity());
+  if (!have_prev_) return s;
+  for (std::size_t a = 0; a < p.size(); ++a) {
+    const auto id = static_cast<std::size_t>(p.id[a]);
+    if (id < known_.size() && known_[id]) s[a] = std::sqrt(norm2(p.x[a] - prev_[id])) / interval;
+  }
+  return s;
+}
+
+void RestMonitor::record(const World& w) {
+  const Particles& p = w.particles();
+  std::size_t n = 0;
+  for (const auto id : p.id) n = std::max(n, static_cast<std::size_t>(id) + 1);
+  prev_.assign(n, Vec3{});
+  known_.assign(n, 0);
+  for (std::size_t a = 0; a < p.size(); ++a) {
+    const auto id = static_cast<std::size_t>(p.id[a]);
+    prev_[id] = p.x[a];
+    known_[id] = 1;
+  }
+  have_prev_ = true;
+}
+
+const std::vector<double>* RestMonitor::mean_speeds(const World& w, long step) const {
+  const bool fresh = rule_.measure == RestMeasure::displacement && last_step_ == step;
+  return fresh && speeds_.size() == w.particles().size() ? &speeds_ : nullptr;
+}
+
+std::vector<double> RestMonitor::mean_speeds_by_id(const World& w) const {
+  const Particles& p = w.particles();
+  if (!mean_speeds(w, last_step_)) return {};
+  std::vector<std::size_t> order(p.size());
+  for (std::size_t a = 0; a < order.size(); ++a) order[a] = a;
+  std::sort(order.begin(), order.end(), [&p](std::size_t a, std::size_t b) { return p.id[a] < p.id[b]; });
+  std::vector<double> out(p.size());
+  for (std::size_t k = 0; k < order.size(); ++k) out[k] = speeds_[order[k]];
+  return out;
 }
 
 std::string StopOutcome::line() const {

@@ -12,9 +12,11 @@ namespace pastemix::analysis {
 Motion motion_of(const ResultSnapshot& r, const MotionLimits& limits) {
   Motion m;
   m.limits = limits;
-  m.known = !r.velocity.empty();
-  for (std::size_t p = 0; p < r.velocity.size(); ++p) {
-    const double speed = norm(r.velocity[p]);
+  m.mean = !r.mean_speed.empty();
+  m.known = m.mean || !r.velocity.empty();
+  const std::size_t n = m.mean ? r.mean_speed.size() : r.velocity.size();
+  for (std::size_t p = 0; p < n; ++p) {
+    const double speed = m.mean ? r.mean_speed[p] : norm(r.velocity[p]);
     m.max_speed = std::max(m.max_speed, speed);
     if (speed <= limits.speed) continue;
     const double mass = r.density[p] * 4.0 / 3.0 * units::pi * r.radius[p] * r.radius[p] * r.radius[p];
@@ -28,9 +30,10 @@ Motion motion_of(const ResultSnapshot& r, const MotionLimits& limits) {
 std::string Motion::line(const ResultSnapshot& r) const {
   if (!known) return fmt::format("state at t = {:g} s: unknown (the snapshot has no velocities)\n", r.time_s);
   return fmt::format("state at t = {:g} s: {} ({:.4g} g of rock moving faster than {:g} m/s in {} particles, "
-                     "{:.4g} g of it in flight above the paste surface; max speed {:.3g} m/s; limit {:g} g)\n",
+                     "{:.4g} g of it in flight above the paste surface; max speed {:.3g} m/s; limit {:g} g){}\n",
                      r.time_s, at_rest() ? "at rest" : "NOT AT REST", 1e3 * moving_mass, limits.speed, moving_count,
-                     1e3 * in_flight_mass, max_speed, 1e3 * limits.mass_limit);
+                     1e3 * in_flight_mass, max_speed, 1e3 * limits.mass_limit,
+                     mean ? "; speeds: the mean over the stop rule's last check interval (mean_speed)" : "");
 }
 
 std::string Motion::refusal(const ResultSnapshot& r) const {

@@ -4,7 +4,8 @@
 // --allow-moving asks for an explicit look at it, and then mark it in every output.
 //
 // The definitions are those of the engine's [stop] rule (model/stop_rule.h), recomputed from the snapshot's
-// velocities: a particle is moving when faster than `speed`; moving mass above `mass_limit` = not at rest;
+// velocities, or from its mean speeds where the run's rule measured by displacement (`mean_speed`): a particle
+// is moving when faster than `speed`; moving mass above `mass_limit` = not at rest;
 // "in flight" = moving with the centre above the final paste surface (falling, or rolling on the pile).
 #pragma once
 
@@ -22,6 +23,7 @@ struct MotionLimits {
 
 struct Motion {
   bool known = false;          // the snapshot has velocities
+  bool mean = false;           // judged on the snapshot's mean speeds (the displacement measure)
   double moving_mass = 0.0;    // kg
   double in_flight_mass = 0.0; // kg
   std::size_t moving_count = 0;

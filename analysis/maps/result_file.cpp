@@ -129,6 +129,15 @@ std::vector<std::int64_t> read_particles(const H5Reader& h5, const std::string& 
       throw InputError(file, 0, fmt::format("dataset '{}/velocity'", g), fmt::format("expected {} x 3 values", n));
     r.velocity = vectors_of(vel, file, g + "/velocity");
   }
+  if (h5.exists(g + "/mean_speed")) {
+    r.mean_speed = h5.read_doubles(g + "/mean_speed");
+    if (r.mean_speed.size() != n)
+      throw InputError(file, 0, fmt::format("dataset '{}/mean_speed'", g), fmt::format("expected {} values", n));
+    for (std::size_t p = 0; p < n; ++p)
+      if (!(r.mean_speed[p] >= 0.0))  // +inf is allowed: a particle the rule had no earlier position of
+        throw InputError(file, 0, fmt::format("dataset '{}/mean_speed'", g),
+                         fmt::format("particle {}: a speed must be >= 0, got {}", p, r.mean_speed[p]));
+  }
   return mat;
 }
 

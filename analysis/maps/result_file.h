@@ -58,6 +58,9 @@ struct ResultSnapshot {
   std::vector<Vec3> position;  // m
   std::vector<double> radius;                   // m
   std::vector<Vec3> velocity;  // m/s (empty when the snapshot has none: motion unknown)
+  // m/s, the run's [stop] displacement measure (mean speed over its last check interval), when the snapshot has
+  // it: the motion census then uses it instead of the velocities (model/stop_rule.h says why)
+  std::vector<double> mean_speed;
   std::vector<double> density;                  // kg/m3 per particle (from its material)
   double escaped_mass = 0.0;                    // kg, removed at the domain boundary up to time_s
   std::size_t escaped_count = 0;

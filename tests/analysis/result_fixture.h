@@ -36,6 +36,8 @@ struct ResultSpec {
   // Final-snapshot velocities (m/s) per sphere; empty: all at rest. `velocities = false` writes none.
   std::vector<std::array<double, 3>> velocity;
   bool velocities = true;
+  // The last snapshot's mean_speed (m/s per sphere: a [stop] displacement-measure run); empty: none written.
+  std::vector<double> mean_speed;
   // A flow result's paste field (/flow, model/flow/flow_output.h schema) at t = 0.5 s when flow_n[0] > 0:
   // cells, size (m), low corner (m), alpha [k][j][i].
   std::array<std::int64_t, 3> flow_n{0, 0, 0};
@@ -114,6 +116,7 @@ inline void write_result(const std::filesystem::path& path, const ResultSpec& s)
         for (std::size_t p = 0; p < n; ++p) v[3 * p + 2] = -1.0;  // snapshot 0 is still falling
       h5.write(g + "/velocity", v, {n, 3});
     }
+    if (snap == 1 && !s.mean_speed.empty()) h5.write(g + "/mean_speed", s.mean_speed, {s.mean_speed.size()});
     h5.attribute(g, "time_s", 0.5 * snap);
   }
   h5.write("/snapshots/time", std::vector<double>{0.0, 0.5});

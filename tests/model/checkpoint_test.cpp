@@ -34,10 +34,15 @@ using pastemix::H5Reader;
 
 namespace {
 
+// measure: the [stop] rule's speed measure (model/stop_rule.h); "displacement" keeps positions between checks,
+// which the checkpoint must carry.
+std::string g_measure = "velocity";
+
 std::vector<std::string> scene_args() {
   return {pastemix::test::source_path("datasets/scenes/mixing_case3.toml"), "--overrides",
           pastemix::test::source_path("datasets/scenes/mixing_fast.overrides.toml"), "--set", "factory.0.mass=0.05",
-          "--set", "end_time=1.0", "--set", "output.interval=0.05", "--set", "stop.moving_mass=1e-6", "--quiet"};
+          "--set", "end_time=1.0", "--set", "output.interval=0.05", "--set", "stop.moving_mass=1e-6",
+          "--set", "stop.measure=\"" + g_measure + "\"", "--quiet"};
 }
 
 std::string quoted(const std::vector<std::string>& args) {
@@ -176,6 +181,28 @@ TEST_CASE("run: killed at a random point then resumed gives the bits of an unint
   kill_and_resume(root, reference, 1, SIGKILL, 1);
   kill_and_resume(root, reference, 2, SIGKILL, 2);
   kill_and_resume(root, reference, 2, SIGTERM, 3);
+  fs::remove_all(root);
+}
+
+TEST_CASE("run: with the [stop] displacement measure, killed and resumed gives the bits of an uninterrupted run") {
+  ::setenv("OMP_WAIT_POLICY", "passive", 0);
+  g_measure = "displacement";
+  const fs::path root = fs::absolute(fmt::format("model_checkpoint_disp_{}", ::getpid()));
+  fs::remove_all(root);
+  fs::create_directories(root / "ref");
+  auto args = scene_args();
+  args.insert(args.end(), {"--out", (root / "ref").string(), "--threads", "1"});
+  const auto ref = pastemix::test::run_pastemix("run" + quoted(args));
+  INFO(ref.output);
+  REQUIRE(ref.exit_code == 0);
+  const fs::path reference = root / "ref" / "mixing_case3.h5";
+  {
+    H5Reader h5(reference.string());
+    CHECK(h5.attribute_string("/", "stop_measure") == "displacement");
+    CHECK(h5.attribute_int("/", "stop_fired") == 1);
+  }
+  kill_and_resume(root, reference, 1, SIGKILL, 4);
+  g_measure = "velocity";
   fs::remove_all(root);
 }
 

@@ -10,6 +10,9 @@
 #include "base/error.h"
 #include "base/h5.h"
 #include "model/run.h"
+#include "model/scene.h"
+#include "model/stop_rule.h"
+#include "model/world.h"
 #include "tests/model/scene_text.h"
 
 using namespace pastemix;
@@ -104,4 +107,61 @@ TEST_CASE("stop rule: bad [stop] tables are input errors with the line") {
   CHECK(err("[stop]\nspeed = 0.01\n").find("only with rule = \"at_rest\"") != std::string::npos);
   CHECK(err("[stop]\nrule = \"at_rst\"\n").find("bad.toml:") != std::string::npos);
   CHECK(err("[stop]\nrule = \"at_rest\"\nspeed = -1\n").find("speed") != std::string::npos);
+}
+
+// The displacement measure (model/stop_rule.h): a particle's speed at a check is its mean speed over the check
+// interval. The world is not stepped here; its state is set between checks: a particle that oscillates in place
+// (a velocity at every check, no displacement: the coupling-cycle oscillation of case 7) is at rest by
+// displacement and moving by velocity; one that moved with zero velocity at the checks is the converse.
+TEST_CASE("stop rule: the displacement measure judges the mean speed over the check interval, not the velocity") {
+  const std::string stop = "[stop]\nrule = \"at_rest\"\ncheck_interval = 0.01\nhold = 2\nmoving_mass = 1e-6\n";
+  auto rule_of = [&](const std::string& measure) {
+    return parse_scene(drop_scene(1.0, stop + "measure = \"" + measure + "\"\n"), "drop.toml").stop;
+  };
+  CHECK(rule_of("displacement").measure == RestMeasure::displacement);
+  CHECK(rule_of("velocity").measure == RestMeasure::velocity);
+  const Scene scene = parse_scene(drop_scene(1.0, stop), "drop.toml");
+  const long every = std::lround(0.01 / 5e-5);
+  SUBCASE("oscillating in place: velocity at every check, no displacement") {
+    World w = make_world(scene);
+    for (auto& v : w.particles().v) v = Vec3{0, 0, 0};
+    RestMonitor by_velocity(rule_of("velocity"), 5e-5, 100000), by_displacement(rule_of("displacement"), 5e-5, 100000);
+    for (int k = 0; k < 4; ++k) {
+      w.particles().v[3] = Vec3{0, 0, k % 2 ? 0.03 : -0.03};  // 3 cm/s, the sign of the phase
+      CHECK_FALSE(by_velocity.check(w, k * every));
+      // The first check records; the next two pass (hold = 2): fired at the third.
+      CHECK(by_displacement.check(w, k * every) == (k >= 2));
+    }
+    // Fired at the third check (2 every); a fired monitor checks no more, so 3 every is not a check step.
+    const std::vector<double>* s = by_displacement.mean_speeds(w, 2 * every);
+    REQUIRE(s);
+    for (double v : *s) CHECK(v == 0.0);
+    CHECK(by_displacement.mean_speeds(w, 3 * every) == nullptr);
+    CHECK(census(w, rule_of("velocity")).moving_count == 1);
+  }
+  SUBCASE("moved 1 mm between checks with no velocity at them: moving by displacement (0.1 m/s), not by velocity") {
+    World w = make_world(scene);
+    for (auto& v : w.particles().v) v = Vec3{0, 0, 0};
+    RestMonitor by_velocity(rule_of("velocity"), 5e-5, 100000), by_displacement(rule_of("displacement"), 5e-5, 100000);
+    for (int k = 0; k < 4; ++k) {
+      w.particles().x[5].z += 1e-3;
+      by_velocity.check(w, k * every);
+      CHECK_FALSE(by_displacement.check(w, k * every));
+    }
+    CHECK(by_velocity.fired());
+    const std::vector<double> by_id = by_displacement.mean_speeds_by_id(w);
+    REQUIRE(by_id.size() == 9);
+    CHECK(by_id[static_cast<std::size_t>(w.particles().id[5])] == doctest::Approx(0.1));
+  }
+  SUBCASE("a run with the measure writes it and the last snapshot's mean speeds, which the census used") {
+    const RunSummary r = run_text(drop_scene(3.0, kAtRest + "measure = \"displacement\"\n"), "model_stop_disp_out");
+    CHECK(r.stop.fired);
+    CHECK(r.stop.last.moving_mass <= 1e-3);
+    H5Reader h5("model_stop_disp_out/drop.h5");
+    CHECK(h5.attribute_string("/", "stop_measure") == "displacement");
+    const auto n = h5.read_doubles("/snapshots/time").size();
+    const auto speeds = h5.read_doubles(fmt::format("/snapshots/{:06d}/mean_speed", n - 1));
+    REQUIRE(speeds.size() == 9);
+    for (double v : speeds) CHECK(v <= 0.01);
+  }
 }
