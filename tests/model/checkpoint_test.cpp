@@ -162,13 +162,12 @@ void kill_and_resume(const fs::path& root, const fs::path& reference, int thread
   }
 }
 
-}  // namespace
-
-TEST_CASE("run: killed at a random point then resumed gives the bits of an uninterrupted run at 1 and 2 threads") {
+// The uninterrupted reference run of scene_args() in root/ref (one thread: the engine's bits do not depend on
+// the thread count, so it serves every resumed run).
+fs::path reference_run(const fs::path& root) {
   // Two threads on a loaded machine: sleeping, not spinning, at the barriers (as scripts/test.sh sets),
   // or a 2-thread run here crawls.
   ::setenv("OMP_WAIT_POLICY", "passive", 0);
-  const fs::path root = fs::absolute(fmt::format("model_checkpoint_{}", ::getpid()));
   fs::remove_all(root);
   fs::create_directories(root / "ref");
   auto args = scene_args();
@@ -176,8 +175,14 @@ TEST_CASE("run: killed at a random point then resumed gives the bits of an unint
   const auto ref = pastemix::test::run_pastemix("run" + quoted(args));
   INFO(ref.output);
   REQUIRE(ref.exit_code == 0);
-  const fs::path reference = root / "ref" / "mixing_case3.h5";
-  // One reference for the three (the engine's bits do not depend on the thread count).
+  return root / "ref" / "mixing_case3.h5";
+}
+
+}  // namespace
+
+TEST_CASE("run: killed at a random point then resumed gives the bits of an uninterrupted run at 1 and 2 threads") {
+  const fs::path root = fs::absolute(fmt::format("model_checkpoint_{}", ::getpid()));
+  const fs::path reference = reference_run(root);
   kill_and_resume(root, reference, 1, SIGKILL, 1);
   kill_and_resume(root, reference, 2, SIGKILL, 2);
   kill_and_resume(root, reference, 2, SIGTERM, 3);
@@ -185,17 +190,9 @@ TEST_CASE("run: killed at a random point then resumed gives the bits of an unint
 }
 
 TEST_CASE("run: with the [stop] displacement measure, killed and resumed gives the bits of an uninterrupted run") {
-  ::setenv("OMP_WAIT_POLICY", "passive", 0);
   g_measure = "displacement";
   const fs::path root = fs::absolute(fmt::format("model_checkpoint_disp_{}", ::getpid()));
-  fs::remove_all(root);
-  fs::create_directories(root / "ref");
-  auto args = scene_args();
-  args.insert(args.end(), {"--out", (root / "ref").string(), "--threads", "1"});
-  const auto ref = pastemix::test::run_pastemix("run" + quoted(args));
-  INFO(ref.output);
-  REQUIRE(ref.exit_code == 0);
-  const fs::path reference = root / "ref" / "mixing_case3.h5";
+  const fs::path reference = reference_run(root);
   {
     H5Reader h5(reference.string());
     CHECK(h5.attribute_string("/", "stop_measure") == "displacement");
