@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include <unistd.h>
+
 #include "base/error.h"
 #include "tests/run_command.h"
 
@@ -132,7 +134,8 @@ namespace {
 // Runs `pastemix run` on kScene with extra arguments in a fresh folder; returns the result.
 test::CommandResult run_scene_with(const std::string& scene_text, const std::string& args,
                                    const std::string& overrides_text = "") {
-  const auto dir = std::filesystem::temp_directory_path() / "pastemix_scene_doc_test";
+  // One folder per process: ctest runs the test cases as parallel processes, and two of them call this.
+  const auto dir = std::filesystem::temp_directory_path() / ("pastemix_scene_doc_test_" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   std::ofstream(dir / "s.toml") << scene_text;
@@ -183,7 +186,7 @@ TEST_CASE("a scene error under --overrides names the scene's line, or the overri
   CHECK(scene_err.output.find("s.toml:17: key 'restitution'") != std::string::npos);
   // An error inside the overrides file: a value the loader refuses names the overrides file and its line.
   const std::string ov = "# chosen by a study\ntime_step = 2e-6\nmaterial.rock.poisson_ratio = 0.7\n";
-  const auto dir = std::filesystem::temp_directory_path() / "pastemix_scene_doc_ov";
+  const auto dir = std::filesystem::temp_directory_path() / ("pastemix_scene_doc_ov_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   std::ofstream(dir / "o.toml") << ov;
   SceneDoc d = SceneDoc::parse(kScene, "s.toml");
