@@ -138,16 +138,25 @@ void RunOutput::write_escaped(const World& w) {
   h5_->attribute("/", "escaped_mass", w.escaped_mass());
 }
 
+namespace {
+
+// The particles by ascending id: the engine's dense order is spatial once it sorts the store
+// ([neighbor] sort_every), and the files keep the layout they have without the sort.
+std::vector<std::size_t> id_order(const Particles& p) {
+  std::vector<std::size_t> by_id(p.size());
+  std::iota(by_id.begin(), by_id.end(), std::size_t{0});
+  if (!std::is_sorted(p.id.begin(), p.id.end()))
+    std::sort(by_id.begin(), by_id.end(), [&](std::size_t a, std::size_t b) { return p.id[a] < p.id[b]; });
+  return by_id;
+}
+
+}  // namespace
+
 void RunOutput::snapshot(const World& w) {
   const Particles& p = w.particles();
   const std::string g = group(snap_times_.size());
   const std::uint64_t n = p.size();
-  // The particles by ascending id: the engine's dense order is spatial once it sorts the store
-  // ([neighbor] sort_every), and the files keep the layout they have without the sort.
-  std::vector<std::size_t> by_id(n);
-  std::iota(by_id.begin(), by_id.end(), std::size_t{0});
-  if (!std::is_sorted(p.id.begin(), p.id.end()))
-    std::sort(by_id.begin(), by_id.end(), [&](std::size_t a, std::size_t b) { return p.id[a] < p.id[b]; });
+  const std::vector<std::size_t> by_id = id_order(p);
   auto in_id_order = [&](const auto& v) {
     std::vector<std::decay_t<decltype(v[0])>> out(n);
     for (std::size_t k = 0; k < n; ++k) out[k] = v[by_id[k]];
@@ -167,10 +176,14 @@ void RunOutput::snapshot(const World& w) {
   snap_counts_.push_back(p.size());
 }
 
-void RunOutput::mean_speed(const std::vector<double>& by_id) {
-  if (snap_times_.empty() || by_id.size() != snap_counts_.back())
+void RunOutput::mean_speed(const World& w, const std::vector<double>& speeds) {
+  const Particles& p = w.particles();
+  if (snap_times_.empty() || speeds.size() != p.size() || p.size() != snap_counts_.back())
     throw std::logic_error("mean_speed: no last snapshot of the same particles");
-  h5_->write(group(snap_times_.size() - 1) + "/mean_speed", by_id, {by_id.size()});
+  const std::vector<std::size_t> by_id = id_order(p);
+  std::vector<double> out(speeds.size());
+  for (std::size_t k = 0; k < out.size(); ++k) out[k] = speeds[by_id[k]];
+  h5_->write(group(snap_times_.size() - 1) + "/mean_speed", out, {out.size()});
 }
 
 void RunOutput::sample(const World& w) {

@@ -67,8 +67,9 @@ class RunOutput {
   RunOutput(const std::filesystem::path& h5_path, std::string h5_final_name, const Scene& scene);
   ~RunOutput();
   void snapshot(const World& w);
-  // The last snapshot's mean_speed dataset (N, m/s, id order): the [stop] displacement measure's speeds.
-  void mean_speed(const std::vector<double>& by_id);
+  // The last snapshot's mean_speed dataset (N, m/s, written in id order as the snapshot): the [stop]
+  // displacement measure's speeds, given in the World's storage order.
+  void mean_speed(const World& w, const std::vector<double>& speeds);
   void sample(const World& w);
   // How the run ended (model/stop_rule.h): root attributes stop_*, written once before finish().
   void stop_outcome(const StopOutcome& o, const StopRule& rule);

@@ -135,7 +135,7 @@ RunSummary run_checked(const Scene& scene, const std::filesystem::path& out_dir,
   // The displacement measure's last census is of mean speeds; they go into the last snapshot for the maps.
   const std::vector<double>* mean = rest.mean_speeds(world, world.steps());
   r.stop.last = census(world, rule, mean);
-  if (mean) out.mean_speed(rest.mean_speeds_by_id(world));
+  if (mean) out.mean_speed(world, *mean);
   out.stop_outcome(r.stop, rule);
   r.wall_seconds = wall_before + std::chrono::duration<double>(Clock::now() - t0).count();
   r.steps = world.steps();

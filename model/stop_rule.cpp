@@ -112,17 +112,6 @@ const std::vector<double>* RestMonitor::mean_speeds(const World& w, long step) c
   return fresh && speeds_.size() == w.particles().size() ? &speeds_ : nullptr;
 }
 
-std::vector<double> RestMonitor::mean_speeds_by_id(const World& w) const {
-  const Particles& p = w.particles();
-  if (!mean_speeds(w, last_step_)) return {};
-  std::vector<std::size_t> order(p.size());
-  for (std::size_t a = 0; a < order.size(); ++a) order[a] = a;
-  std::sort(order.begin(), order.end(), [&p](std::size_t a, std::size_t b) { return p.id[a] < p.id[b]; });
-  std::vector<double> out(p.size());
-  for (std::size_t k = 0; k < order.size(); ++k) out[k] = speeds_[order[k]];
-  return out;
-}
-
 std::string StopOutcome::line() const {
   const std::string moving =
       fmt::format("{:.4g} g moving ({} particles, {:.4g} g of it above the paste), max speed {:.3g} m/s",

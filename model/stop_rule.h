@@ -79,12 +79,9 @@ class RestMonitor {
   long every() const { return every_; }
   bool check(const World& w, long step);
   bool fired() const { return fired_; }
-  // The displacement measure's mean speeds at the last check, in particle id order (empty before two checks or
-  // with the velocity measure), and the step of that check.
-  std::vector<double> mean_speeds_by_id(const World& w) const;
-  // The same in storage order for the census, when the last check was at `step` (else null: velocities).
+  // The displacement measure's mean speeds (storage order, +inf for a particle without an earlier position)
+  // when its last check was at `step`; null otherwise (the velocity measure, or no check at that step).
   const std::vector<double>* mean_speeds(const World& w, long step) const;
-  long last_check_step() const { return last_step_; }
 
  private:
   friend struct CheckpointAccess;  // model/checkpoint.cpp
