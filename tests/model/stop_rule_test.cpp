@@ -107,6 +107,8 @@ TEST_CASE("stop rule: bad [stop] tables are input errors with the line") {
   CHECK(err("[stop]\nspeed = 0.01\n").find("only with rule = \"at_rest\"") != std::string::npos);
   CHECK(err("[stop]\nrule = \"at_rst\"\n").find("bad.toml:") != std::string::npos);
   CHECK(err("[stop]\nrule = \"at_rest\"\nspeed = -1\n").find("speed") != std::string::npos);
+  CHECK(err("[stop]\nrule = \"at_rest\"\nmeasure = \"displace\"\n").find("bad.toml:") != std::string::npos);
+  CHECK(err("[stop]\nmeasure = \"displacement\"\n").find("only with rule = \"at_rest\"") != std::string::npos);
 }
 
 // The displacement measure (model/stop_rule.h): a particle's speed at a check is its mean speed over the check
