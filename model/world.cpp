@@ -243,9 +243,87 @@ inline void World::close_kick(Lane& lane, long a, Then then, double h) {
   }
   kick_twice(a, h, lane.rot, lane.roll);
   drift_one(a, lane.d2, lane.bad);
-  // The state the other threads read in the next pass (cross pairs).
+  publish_ghost(lane, a);
+}
+
+// The state the other threads read in the next pass (cross pairs), after particle a's drift.
+inline void World::publish_ghost(const Lane& lane, long a) {
   if (lane.threads > 1 && pairs_.ghost_of[a] != PairList::kNone)
     pairs_.ghost[lane.cur ^ 1][pairs_.ghost_of[a]] = {p_.x[a], p_.v[a], lane.rot ? p_.omega[a] : Vec3{}};
+}
+
+namespace {
+
+constexpr int kKickBlock = 64;  // particles per block of close_kicks_rolling (its arrays stay in L1)
+
+// Spins of a block of particles, one lane each: omega (in and out), the half kick's dw = h tau / I, the
+// friction's stop = h M / I (rad/s) and the rolling capacity M (N.m).
+struct SpinBlock {
+  double wx[kKickBlock], wy[kKickBlock], wz[kKickBlock], dx[kKickBlock], dy[kKickBlock], dz[kKickBlock];
+  double stop[kKickBlock], cap[kKickBlock];
+};
+
+// Lanes 0 .. m-1: kick_twice's two spin updates under the non-reversing rolling friction (w + dw, then |w|
+// shrinks by stop or w stops), or w + dw + dw without a rolling contact (M = 0), in its operations and
+// order. Both sides of each choice are computed and one selected: the compiler runs the lanes as one vector
+// loop (no trapping math in this target), where one sphere at a time chained two square roots and two
+// divisions through unpredictable branches (about 40 % of the pour's kick stage, issue 19).
+void spin_block(SpinBlock& b, int m) {
+  for (int e = 0; e < m; ++e) {
+    const double dx = b.dx[e], dy = b.dy[e], dz = b.dz[e], stop = b.stop[e];
+    double wx = b.wx[e], wy = b.wy[e], wz = b.wz[e];
+    const double fx = (wx + dx) + dx, fy = (wy + dy) + dy, fz = (wz + dz) + dz;
+    for (int k = 0; k < 2; ++k) {
+      wx = wx + dx, wy = wy + dy, wz = wz + dz;
+      const double len = std::sqrt(wx * wx + wy * wy + wz * wz);
+      const double keep = 1.0 - stop / len;
+      const bool halt = len <= stop;
+      wx = halt ? 0.0 : wx * keep;
+      wy = halt ? 0.0 : wy * keep;
+      wz = halt ? 0.0 : wz * keep;
+    }
+    const bool held = b.cap[e] > 0.0;
+    b.wx[e] = held ? wx : fx;
+    b.wy[e] = held ? wy : fy;
+    b.wz[e] = held ? wz : fz;
+  }
+}
+
+}  // namespace
+
+// close_kick(Then::kick_drift) of every particle of the lane that no kick pass claims, with rotation and
+// the rolling friction on, kKickBlock particles at a time: the velocities kicked as kick_twice does, the
+// block's spins by spin_block, then the spins stored, the drifts and the ghost copies, in the particles'
+// order. Each particle gets the operations kick_twice and drift_one give it: the same bits.
+void World::close_kicks_rolling(Lane& lane, double h) {
+  SpinBlock b;
+  long idx[kKickBlock];
+  for (long q = 0; q < lane.n_own;) {
+    int m = 0;
+    for (; q < lane.n_own && m < kKickBlock; ++q) {
+      const long a = lane.particle(q);
+      if (with_kick_pass(forces_, a, [](const auto&) {})) continue;
+      const Vec3 dv = (p_.f[a] * p_.inv_mass[a] + accel_) * h;
+      Vec3 v = p_.v[a];
+      v += dv;
+      v += dv;
+      p_.v[a] = v;
+      const Vec3 dw = p_.torque[a] * (h * p_.inv_inertia[a]);
+      const Vec3& w = p_.omega[a];
+      const double cap = p_.rolling_capacity[a];
+      b.wx[m] = w.x, b.wy[m] = w.y, b.wz[m] = w.z, b.dx[m] = dw.x, b.dy[m] = dw.y, b.dz[m] = dw.z;
+      b.stop[m] = h * cap * p_.inv_inertia[a];
+      b.cap[m] = cap;
+      idx[m++] = a;
+    }
+    spin_block(b, m);
+    for (int e = 0; e < m; ++e) {
+      const long a = idx[e];
+      p_.omega[a] = {b.wx[e], b.wy[e], b.wz[e]};
+      drift_one(a, lane.d2, lane.bad);
+      publish_ghost(lane, a);
+    }
+  }
 }
 
 template <class Law, class Roll>
@@ -265,9 +343,13 @@ void World::step_lane(const PassStep<Law, Roll>& s, Lane& lane, Then then, doubl
       }
   });
   if (then == Then::nothing) return;
-  for (long q = 0; q < lane.n_own; ++q) {
-    const long a = lane.particle(q);
-    if (!with_kick_pass(forces_, a, [](const auto&) {})) close_kick(lane, a, then, h);
+  if (then == Then::kick_drift && lane.rot && lane.roll) {
+    close_kicks_rolling(lane, h);
+  } else {
+    for (long q = 0; q < lane.n_own; ++q) {
+      const long a = lane.particle(q);
+      if (!with_kick_pass(forces_, a, [](const auto&) {})) close_kick(lane, a, then, h);
+    }
   }
   lane.time(Profile::kick);
   // The kick passes' particles, ascending, each by its owner (its operations are its own: any order of the
