@@ -186,7 +186,7 @@ AdvectionStats advect(const Grid& g, const Phases& ph, double dt, long step, std
   AdvectionStats st;
   for (int d = 0; d < 3; ++d)
     for (double v : adv[d]) st.max_cfl = std::max(st.max_cfl, std::abs(v) * dt / g.h[d]);
-  if (st.max_cfl > 0.5 + 1e-12)
+  if (st.max_cfl > kMaxSweepCfl)
     throw std::logic_error("flow advection: CFL above 1/2 per sweep (the step size is chosen wrongly)");
 
   // c of Weymouth & Yue, frozen over the step; rho(c) and rho(c) u0 are the dilatation terms' densities.

@@ -29,6 +29,10 @@ namespace pastemix::flow {
 
 using Faces = std::array<std::vector<double>, 3>;  // one array per velocity component, Grid::face indexing
 
+// The largest |u_d| dt / h_d (with particles, of the volume flux eps_f u) a sweep of advect() takes: the split
+// VOF sweeps stay bounded up to 1/2 (1e-12 for the round-off of a step chosen at the bound).
+inline constexpr double kMaxSweepCfl = 0.5 + 1e-12;
+
 struct AdvectionStats {
   double alpha_min = 0.0, alpha_max = 0.0;  // after the step (round-off below 0 / above 1 is not clipped)
   double max_cfl = 0.0;                     // max over faces of |u_d| dt / h_d

@@ -244,7 +244,15 @@ StepStats FlowSolver::step(double dt) {
     rate.assign(g_.cell_count(), 0.0);
     if (with_rate_)
       for (long c = 0; c < g_.cell_count(); ++c) rate[c] = (eps_next_[c] - eps_[c]) / dt;
+    const Faces u_entry = u_;
     project_continuity(dt, FluidFraction{&eps_face, &rate});
+    // Nothing else has changed yet: the step can be retried in shorter parts from u_entry (FluxStepTooLong).
+    const double cfl = flux_cfl(g_, u_, eps_face, dt);
+    if (cfl > kMaxSweepCfl) {
+      const std::string why = flux_cfl_diagnosis(g_, u_, eps_face, alpha_, eps_, eps_next_, dt, t_, totals_.steps);
+      u_ = u_entry;
+      throw FluxStepTooLong(why, cfl);
+    }
   }
   const FluidFraction vf_rest{&eps_face, nullptr}, vf_step{&eps_face, &rate};
   const FluidFraction* vf0 = coupled ? &vf_rest : nullptr;

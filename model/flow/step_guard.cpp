@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -104,6 +105,45 @@ void require_time_step_above_floor(const Grid& g, const StepControl& c, const Fa
       (eps_f && !eps_f->empty() ? fmt::format(" (fluid fraction {:.3f} | {:.3f} on its two sides)", sides(g, *eps_f, f.c, f.q)[0],
                                               sides(g, *eps_f, f.c, f.q)[1])
                                 : std::string()));
+}
+
+namespace {
+
+// The face with the largest |eps_f u| / h and that ratio (1/s).
+std::pair<FaceAt, double> fastest_flux(const Grid& g, const Faces& u, const Faces& eps_face) {
+  FaceAt f;
+  double rate = -1.0;
+  for (int c = 0; c < 3; ++c)
+    for (long k = 0; k < static_cast<long>(u[c].size()); ++k) {
+      const double r = std::abs(eps_face[c][k] * u[c][k]) / g.h[c];
+      if (r > rate) rate = r, f = {c, face_index(g, c, k), std::abs(u[c][k])};
+    }
+  return {f, rate};
+}
+
+}  // namespace
+
+double flux_cfl(const Grid& g, const Faces& u, const Faces& eps_face, double dt) {
+  return fastest_flux(g, u, eps_face).second * dt;
+}
+
+std::string flux_cfl_diagnosis(const Grid& g, const Faces& u, const Faces& eps_face, const std::vector<double>& alpha,
+                               const std::vector<double>& eps_old, const std::vector<double>& eps_new, double dt,
+                               double time, long step) {
+  const auto [f, rate] = fastest_flux(g, u, eps_face);
+  std::array<double, 3> x{};  // m: the face's centre
+  for (int d = 0; d < 3; ++d) x[d] = g.origin[d] + (f.q[d] + (d == f.c ? 0.0 : 0.5)) * g.h[d];
+  const auto a = sides(g, alpha, f.c, f.q), e0 = sides(g, eps_old, f.c, f.q), e1 = sides(g, eps_new, f.c, f.q);
+  double change = 0.0;  // the largest |d eps_f| of a cell over the step
+  for (std::size_t k = 0; k < eps_old.size(); ++k) change = std::max(change, std::abs(eps_new[k] - eps_old[k]));
+  return fmt::format(
+      "flow: the particles' volume change outruns the flow step at t = {:.9g} s (step {}): after the continuity "
+      "projection the fluid's flux moves {:.3g} cells per sweep (bound {:g}) over the step {:.3g} s; fastest face: {} "
+      "face ({}, {}, {}) at ({:.4g}, {:.4g}, {:.4g}) m, |u| = {:.4g} m/s, paste fraction {:.3f} | {:.3f}, fluid "
+      "fraction {:.3f} -> {:.3f} | {:.3f} -> {:.3f} on its two sides; largest fluid-fraction change of a cell over "
+      "the step {:.3f}",
+      time, step, rate * dt, kMaxSweepCfl, dt, "xyz"[f.c], f.q[0], f.q[1], f.q[2], x[0], x[1], x[2], f.speed, a[0],
+      a[1], e0[0], e1[0], e0[1], e1[1], change);
 }
 
 }  // namespace pastemix::flow

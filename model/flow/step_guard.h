@@ -14,8 +14,10 @@
 #pragma once
 
 #include <array>
+#include <string>
 #include <vector>
 
+#include "base/error.h"
 #include "model/flow/advection.h"
 #include "model/flow/grid.h"
 
@@ -43,5 +45,29 @@ inline double time_step_floor(const Grid& g, const StepControl& c) { return refe
 // fluid fraction per cell (named on the fastest face's two sides too: a runaway in a packed pile shows there).
 void require_time_step_above_floor(const Grid& g, const StepControl& c, const Faces& u, const std::vector<double>& alpha,
                                    double dt, double time, long step, const std::vector<double>* eps_f = nullptr);
+
+// The fluid's volume flux eps_f u on the faces (eps_face: the step's new fluid fraction per face) moved more than
+// kMaxSweepCfl cells per sweep over the step: the split VOF sweeps would be unbounded. The step was chosen from
+// u before the continuity projection made room for the particles' volume change over it; a change too fast for
+// the step (a rock of several cells entering the box in one coupling cycle: chapter-7 test 3's 50 mm rock took
+// 0.555 of a top cell's fluid fraction in one 1 ms step) drives the fluid faster than that step allows.
+// FlowSolver::step throws it with u as it was before the projection, so that a caller can retry the step in
+// shorter parts (model/coupling/coupled_flow.cpp does); uncaught, it ends the run with its diagnosis (exit 3).
+class FluxStepTooLong : public RuntimeFailure {
+ public:
+  FluxStepTooLong(const std::string& what, double cfl) : RuntimeFailure(what), cfl_(cfl) {}
+  double cfl() const { return cfl_; }  // cells per sweep the flux took (> kMaxSweepCfl)
+ private:
+  double cfl_;
+};
+
+// The largest |eps_f u| dt / h over the faces.
+double flux_cfl(const Grid& g, const Faces& u, const Faces& eps_face, double dt);
+
+// The diagnosis of a flux CFL `cfl` above the bound: the time, the fastest face, its paste and fluid fractions
+// (eps_f old and new per cell) and the largest fluid-fraction change of a cell over the step dt (s).
+std::string flux_cfl_diagnosis(const Grid& g, const Faces& u, const Faces& eps_face, const std::vector<double>& alpha,
+                               const std::vector<double>& eps_old, const std::vector<double>& eps_new, double dt,
+                               double time, long step);
 
 }  // namespace pastemix::flow
