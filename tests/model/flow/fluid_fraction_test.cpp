@@ -19,18 +19,7 @@ namespace {
 
 Grid closed_box() { return pastemix::test::cube_box({8, 6, 10}, 0.01, false); }
 
-// A smooth solid fraction: a porous ball (peak 0.5) centred at c (m), radius R (m).
-std::vector<double> fluid_fraction(const Grid& g, std::array<double, 3> c, double R) {
-  std::vector<double> eps(g.cell_count());
-  for (int k = 0; k < g.n[2]; ++k)
-    for (int j = 0; j < g.n[1]; ++j)
-      for (int i = 0; i < g.n[0]; ++i) {
-        const double x = (i + 0.5) * g.h[0] - c[0], y = (j + 0.5) * g.h[1] - c[1], z = (k + 0.5) * g.h[2] - c[2];
-        const double r2 = (x * x + y * y + z * z) / (R * R);
-        eps[g.cell(i, j, k)] = 1.0 - (r2 < 1.0 ? 0.5 * (1.0 - r2) * (1.0 - r2) : 0.0);
-      }
-  return eps;
-}
+using pastemix::test::porous_ball;
 
 Faces random_faces(const Grid& g, unsigned seed) {
   std::mt19937_64 rng(seed);
@@ -75,7 +64,7 @@ TEST_CASE("fluid fraction: the projection meets div(eps_f u) = -d eps_f/dt, with
   const Grid g = closed_box();
   // The ball moves down by one cell: in a closed box the solid volume must not change (the sum of the rate is
   // then 0 to round-off; a source that does not sum to 0 has no solution there).
-  const std::vector<double> e0 = fluid_fraction(g, {0.04, 0.03, 0.06}, 0.03), e1 = fluid_fraction(g, {0.04, 0.03, 0.05}, 0.03);
+  const std::vector<double> e0 = porous_ball(g, {0.04, 0.03, 0.06}, 0.03), e1 = porous_ball(g, {0.04, 0.03, 0.05}, 0.03);
   const double dt = 1e-3;
   std::vector<double> rate(g.cell_count());
   for (long c = 0; c < g.cell_count(); ++c) rate[c] = (e1[c] - e0[c]) / dt;
@@ -94,7 +83,7 @@ TEST_CASE("fluid fraction: a paste-filled box with a moving porous ball keeps fu
   Grid g = closed_box();
   g.bc[5].type = BoundaryType::open;
   const double dt = 2e-3;
-  std::vector<double> e0 = fluid_fraction(g, {0.04, 0.03, 0.05}, 0.03), e1 = fluid_fraction(g, {0.041, 0.03, 0.047}, 0.03);
+  std::vector<double> e0 = porous_ball(g, {0.04, 0.03, 0.05}, 0.03), e1 = porous_ball(g, {0.041, 0.03, 0.047}, 0.03);
   std::vector<double> rate(g.cell_count());
   for (long c = 0; c < g.cell_count(); ++c) rate[c] = (e1[c] - e0[c]) / dt;
   const Faces face = face_means(g, e1), rho = uniform(g, 1843.0);
@@ -127,7 +116,7 @@ TEST_CASE("fluid fraction: a paste-filled box with a moving porous ball keeps fu
 TEST_CASE("fluid fraction: a paste at rest around a fixed porous ball stays at rest (hydrostatic with eps_f < 1)") {
   FlowSolver s = pastemix::test::paste_column({6, 6, 16}, 0.01, 1843.0, 0.1037);
   const Grid& g = s.grid();
-  s.set_fluid_fraction(fluid_fraction(g, {0.03, 0.03, 0.1}, 0.025));  // through the surface
+  s.set_fluid_fraction(porous_ball(g, {0.03, 0.03, 0.1}, 0.025));  // through the surface
   const double v0 = s.paste_volume();
   for (int n = 0; n < 50; ++n) {
     s.set_next_fluid_fraction(s.fluid_fraction());
@@ -153,7 +142,7 @@ TEST_CASE("fluid fraction: the first coupled step of a moving paste projects it 
   FlowSolver s(g, ph, fs);
   s.add_paste_box({0, 0, 0}, {0.1, 0.04, 0.08});
   for (double& v : s.velocity()[0]) v = 0.02;
-  const std::vector<double> eps = fluid_fraction(g, {0.05, 0.02, 0.04}, 0.02);
+  const std::vector<double> eps = porous_ball(g, {0.05, 0.02, 0.04}, 0.02);
   s.set_fluid_fraction(eps);
   const double v0 = s.paste_volume();
   const Faces face = face_means(g, eps);

@@ -123,23 +123,6 @@ TEST_CASE("step guard: with particles in the cells the diagnosis names the fluid
   CHECK(without.ends_with("air velocity runaway in the air"));
 }
 
-namespace {
-
-// A porous ball's fluid fraction (peak solid 0.5 at its centre c, radius R; m) on the cells of g.
-std::vector<double> porous_ball(const Grid& g, std::array<double, 3> c, double R) {
-  std::vector<double> eps(g.cell_count());
-  for (int k = 0; k < g.n[2]; ++k)
-    for (int j = 0; j < g.n[1]; ++j)
-      for (int i = 0; i < g.n[0]; ++i) {
-        const double x = (i + 0.5) * g.h[0] - c[0], y = (j + 0.5) * g.h[1] - c[1], z = (k + 0.5) * g.h[2] - c[2];
-        const double r2 = (x * x + y * y + z * z) / (R * R);
-        eps[g.cell(i, j, k)] = 1.0 - (r2 < 1.0 ? 0.5 * (1.0 - r2) * (1.0 - r2) : 0.0);
-      }
-  return eps;
-}
-
-}  // namespace
-
 // Chapter-7 test 3 with flow stopped on "internal error: flow advection: CFL above 1/2 per sweep" when a 50 mm
 // rock entered the box in one coupling cycle: the step had been chosen from u before the continuity projection.
 TEST_CASE("step guard: a fluid-fraction change too fast for the step throws FluxStepTooLong and leaves u as it was") {
@@ -148,7 +131,7 @@ TEST_CASE("step guard: a fluid-fraction change too fast for the step throws Flux
   FlowSolver s = pastemix::test::paste_column({6, 6, 16}, 0.01, 1843.0, 0.1037);
   const Grid& g = s.grid();
   s.set_fluid_fraction(std::vector<double>(g.cell_count(), 1.0));
-  const std::vector<double> eps1 = porous_ball(g, {0.03, 0.03, 0.13}, 0.04);
+  const std::vector<double> eps1 = pastemix::test::porous_ball(g, {0.03, 0.03, 0.13}, 0.04);
   s.set_next_fluid_fraction(eps1);
   const Faces u0 = s.velocity();
   const double t0 = s.time();
