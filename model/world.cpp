@@ -146,6 +146,41 @@ inline void World::kick_one(long a, double h, bool rot, bool roll) {
   }
 }
 
+namespace {
+
+// One sphere's closing and next opening half kicks of omega under the non-reversing rolling friction (w + dw,
+// then |w| shrinks by stop = h M / I (rad/s) or w stops), or w + dw + dw without a rolling contact (held =
+// false: M = 0). Both sides of each choice are computed and one selected, so that spin_block's loop over a
+// block of spheres is one vector loop (no trapping math in this target): one sphere at a time chained two
+// square roots and two divisions through unpredictable branches (about 40 % of the pour's kick stage, issue 19).
+inline void spin_twice(double& wx, double& wy, double& wz, double dx, double dy, double dz, double stop, bool held) {
+  const double fx = (wx + dx) + dx, fy = (wy + dy) + dy, fz = (wz + dz) + dz;
+  double x = wx, y = wy, z = wz;
+  for (int k = 0; k < 2; ++k) {
+    x = x + dx, y = y + dy, z = z + dz;
+    const double len = std::sqrt(x * x + y * y + z * z);
+    const double keep = 1.0 - stop / len;
+    const bool halt = len <= stop;
+    x = halt ? 0.0 : x * keep;
+    y = halt ? 0.0 : y * keep;
+    z = halt ? 0.0 : z * keep;
+  }
+  wx = held ? x : fx;
+  wy = held ? y : fy;
+  wz = held ? z : fz;
+}
+
+}  // namespace
+
+// v after the closing half kick of a step and the opening half kick of the next (the same force, unclaimed a).
+inline void World::kick_velocity_twice(long a, double h) {
+  const Vec3 dv = (p_.f[a] * p_.inv_mass[a] + accel_) * h;
+  Vec3 v = p_.v[a];
+  v += dv;
+  v += dv;
+  p_.v[a] = v;
+}
+
 // The closing half kick of a step and the opening half kick of the next (the same force): kick_one twice,
 // with the shared factors computed once and v, omega kept in registers in between (the same bits).
 inline void World::kick_twice(long a, double h, bool rot, bool roll) {
@@ -154,25 +189,15 @@ inline void World::kick_twice(long a, double h, bool rot, bool roll) {
     kick_one(a, h, rot, roll);
     return;
   }
-  const Vec3 dv = (p_.f[a] * p_.inv_mass[a] + accel_) * h;
-  Vec3 v = p_.v[a];
-  v += dv;
-  v += dv;
-  p_.v[a] = v;
+  kick_velocity_twice(a, h);
   if (rot) {
     const Vec3 dw = p_.torque[a] * (h * p_.inv_inertia[a]);
     Vec3 w = p_.omega[a];
-    if (roll && p_.rolling_capacity[a] > 0.0) {
-      const double stop = h * p_.rolling_capacity[a] * p_.inv_inertia[a];  // rad/s the friction can remove
-      for (int k = 0; k < 2; ++k) {
-        w = w + dw;
-        const double len = norm(w);
-        w = len <= stop ? Vec3{} : w * (1.0 - stop / len);
-      }
-    } else {
-      w = w + dw;
-      w = w + dw;
-    }
+    const double cap = p_.rolling_capacity[a];  // N.m
+    if (roll)
+      spin_twice(w.x, w.y, w.z, dw.x, dw.y, dw.z, h * cap * p_.inv_inertia[a], cap > 0.0);
+    else
+      w = (w + dw) + dw;
     p_.omega[a] = w;
   }
 }
@@ -263,37 +288,16 @@ struct SpinBlock {
   double stop[kKickBlock], cap[kKickBlock];
 };
 
-// Lanes 0 .. m-1: kick_twice's two spin updates under the non-reversing rolling friction (w + dw, then |w|
-// shrinks by stop or w stops), or w + dw + dw without a rolling contact (M = 0), in its operations and
-// order. Both sides of each choice are computed and one selected: the compiler runs the lanes as one vector
-// loop (no trapping math in this target), where one sphere at a time chained two square roots and two
-// divisions through unpredictable branches (about 40 % of the pour's kick stage, issue 19).
+// Lanes 0 .. m-1: spin_twice of each (the block's spheres in one vector loop).
 void spin_block(SpinBlock& b, int m) {
-  for (int e = 0; e < m; ++e) {
-    const double dx = b.dx[e], dy = b.dy[e], dz = b.dz[e], stop = b.stop[e];
-    double wx = b.wx[e], wy = b.wy[e], wz = b.wz[e];
-    const double fx = (wx + dx) + dx, fy = (wy + dy) + dy, fz = (wz + dz) + dz;
-    for (int k = 0; k < 2; ++k) {
-      wx = wx + dx, wy = wy + dy, wz = wz + dz;
-      const double len = std::sqrt(wx * wx + wy * wy + wz * wz);
-      const double keep = 1.0 - stop / len;
-      const bool halt = len <= stop;
-      wx = halt ? 0.0 : wx * keep;
-      wy = halt ? 0.0 : wy * keep;
-      wz = halt ? 0.0 : wz * keep;
-    }
-    const bool held = b.cap[e] > 0.0;
-    b.wx[e] = held ? wx : fx;
-    b.wy[e] = held ? wy : fy;
-    b.wz[e] = held ? wz : fz;
-  }
+  for (int e = 0; e < m; ++e) spin_twice(b.wx[e], b.wy[e], b.wz[e], b.dx[e], b.dy[e], b.dz[e], b.stop[e], b.cap[e] > 0.0);
 }
 
 }  // namespace
 
 // close_kick(Then::kick_drift) of every particle of the lane that no kick pass claims, with rotation and
 // the rolling friction on, kKickBlock particles at a time: the velocities kicked as kick_twice does, the
-// block's spins by spin_block, then the spins stored, the drifts and the ghost copies, in the particles'
+// block's spins by spin_block (spin_twice), then the spins stored, the drifts and the ghost copies, in the particles'
 // order. Each particle gets the operations kick_twice and drift_one give it: the same bits.
 void World::close_kicks_rolling(Lane& lane, double h) {
   SpinBlock b;
@@ -303,11 +307,7 @@ void World::close_kicks_rolling(Lane& lane, double h) {
     for (; q < lane.n_own && m < kKickBlock; ++q) {
       const long a = lane.particle(q);
       if (with_kick_pass(forces_, a, [](const auto&) {})) continue;
-      const Vec3 dv = (p_.f[a] * p_.inv_mass[a] + accel_) * h;
-      Vec3 v = p_.v[a];
-      v += dv;
-      v += dv;
-      p_.v[a] = v;
+      kick_velocity_twice(a, h);
       const Vec3 dw = p_.torque[a] * (h * p_.inv_inertia[a]);
       const Vec3& w = p_.omega[a];
       const double cap = p_.rolling_capacity[a];

@@ -154,6 +154,7 @@ class World {
   bool rebuild_due(double moved2, double t) const;
   void kick_one(long a, double h, bool rot, bool roll);
   void kick_twice(long a, double h, bool rot, bool roll);
+  void kick_velocity_twice(long a, double h);
   // Drift of particle a by dt, its domain check and its squared displacement since the last rebuild.
   void drift_one(long a, double& d2, long& first_bad);
   // First half kick and drift; returns the largest squared displacement since the last rebuild (m2).
