@@ -61,6 +61,13 @@ std::array<FaceAt, 2> fastest(const Grid& g, const Faces& u, const std::vector<d
   return {any, paste};
 }
 
+// m: the centre of face f.
+std::array<double, 3> face_centre(const Grid& g, const FaceAt& f) {
+  std::array<double, 3> x{};
+  for (int d = 0; d < 3; ++d) x[d] = g.origin[d] + (f.q[d] + (d == f.c ? 0.0 : 0.5)) * g.h[d];
+  return x;
+}
+
 // What the fastest face is (f), from the paste fraction on its two sides (a) and the fastest paste face.
 std::string cause(const Grid& g, const FaceAt& f, const std::array<double, 2>& a, double paste_speed) {
   const bool air = std::max(a[0], a[1]) < kPure, in_paste = std::min(a[0], a[1]) > 1.0 - kPure;
@@ -94,8 +101,7 @@ void require_time_step_above_floor(const Grid& g, const StepControl& c, const Fa
   if (dt >= floor) return;
   const auto [f, paste] = fastest(g, u, alpha);
   const auto a = sides(g, alpha, f.c, f.q);
-  std::array<double, 3> x{};  // m: the face's centre
-  for (int d = 0; d < 3; ++d) x[d] = g.origin[d] + (f.q[d] + (d == f.c ? 0.0 : 0.5)) * g.h[d];
+  const std::array<double, 3> x = face_centre(g, f);
   throw RuntimeFailure(fmt::format(
       "flow: time step collapse at t = {:.9g} s (step {}): the CFL step {:.3g} s is below the floor {:.3g} s (1/{:g} "
       "of the {} {:.3g} s); fastest face: {} face ({}, {}, {}) at ({:.4g}, {:.4g}, {:.4g}) m, |u| = {:.4g} m/s, "
@@ -131,8 +137,7 @@ std::string flux_cfl_diagnosis(const Grid& g, const Faces& u, const Faces& eps_f
                                const std::vector<double>& eps_old, const std::vector<double>& eps_new, double dt,
                                double time, long step) {
   const auto [f, rate] = fastest_flux(g, u, eps_face);
-  std::array<double, 3> x{};  // m: the face's centre
-  for (int d = 0; d < 3; ++d) x[d] = g.origin[d] + (f.q[d] + (d == f.c ? 0.0 : 0.5)) * g.h[d];
+  const std::array<double, 3> x = face_centre(g, f);
   const auto a = sides(g, alpha, f.c, f.q), e0 = sides(g, eps_old, f.c, f.q), e1 = sides(g, eps_new, f.c, f.q);
   double change = 0.0;  // the largest |d eps_f| of a cell over the step
   for (std::size_t k = 0; k < eps_old.size(); ++k) change = std::max(change, std::abs(eps_new[k] - eps_old[k]));
