@@ -24,8 +24,11 @@
 //   3. Flow over T, in k equal sub-steps (k from the flow's CFL bound at the start), eps_f from the particles'
 //      new positions (kernel.h; linear in time between the cycle's start and end within the sub-steps). In the
 //      first sub-step the faces take -W^T J_sub before the viscous solve (FlowSolver::set_exchange `before`:
-//      the implicit viscous step spreads it within the step, so a steady state does not depend on dt); after
-//      each sub-step's projection (`after`), the fluid's own change at the particles is exchanged with the
+//      the implicit viscous step spreads it within the step, so a steady state does not depend on dt), each
+//      face the share of it its fluid mass since the cycle's start allows (exchange.h, react's start_mass; the
+//      rest goes back to the particles); between that viscous solve and the projection (`viscous`) a thin
+//      face kicked past its particles is brought back to their hull (exchange.h, bound_reaction); after each
+//      sub-step's projection (`after`), the fluid's own change at the particles is exchanged with the
 //      velocity-dependent drag implicit in both phases (exchange.h, correct).
 //   4. Model A's pressure-gradient force on the particles, -V_p grad p (buoyancy counted once, no separate
 //      rho_f V g): each sub-step's pressure impulses (FlowSolver::continuity_impulse / pressure_impulse, dt grad p
@@ -79,6 +82,7 @@ struct CycleStats {
   int exchange_iterations = 0;  // CG, summed
   double dropped_yield = 0.0;   // N s (exchange.h)
   double clipped_reaction = 0.0;  // N s the bounded reaction gave back to the particles (exchange.h: bound_reaction)
+  double returned_reaction = 0.0;  // N s of reaction faces emptied since the cycle's start gave back (exchange.h: react)
   // The exchange's books (N s): what the particles got from the paste's drag over the cycle (the sub-cycle's
   // yield impulses and the implicit drag's), what the faces' momentum changed by inside the exchange, and
   // sum |J| over particles and components (the scale of the first two).
@@ -111,6 +115,7 @@ class CoupledFlow {
     // the one near-air face its end support still reaches.
     std::vector<Vec> x;
     flow::Faces mask;
+    flow::Faces mass;  // kg, the faces' fluid mass then: what the reaction may land on (Exchange::react)
     // Per particle: 1 if the yield part held it at its last DEM step of the sub-cycle (the DEM writes it:
     // drag_step's result), read by finish() with CouplingSettings::implicit_stick.
     std::vector<char> stuck;

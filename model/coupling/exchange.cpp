@@ -153,20 +153,44 @@ ExchangeStats Exchange::apply(double dt, const ExchangeParticles& p, std::vector
 }
 
 ExchangeStats Exchange::react(const ExchangeParticles& p, flow::Faces& u, const flow::Faces& face_mass,
-                              const flow::Faces* paste_mask, const std::vector<std::array<double, 3>>& subcycle_impulse) const {
-  if (subcycle_impulse.size() != p.centre.size())
+                              const flow::Faces* paste_mask, const std::vector<std::array<double, 3>>& subcycle_impulse,
+                              const flow::Faces* start_mass, std::vector<std::array<double, 3>>* returned) const {
+  const std::size_t n = p.centre.size();
+  if (subcycle_impulse.size() != n)
     throw std::invalid_argument("coupling exchange: sub-cycle impulses and particles differ in length");
+  if ((start_mass == nullptr) != (returned == nullptr))
+    throw std::invalid_argument("coupling exchange: the reaction's start mass comes with the returned impulses");
+  if (returned != nullptr) returned->assign(n, {0.0, 0.0, 0.0});
   const Rows W = rows(p, face_mass, paste_mask);
   ExchangeStats st;
   for (int c = 0; c < 3; ++c) {
-    std::vector<double> reaction(u[c].size(), 0.0);
-    for (std::size_t i = 0; i < p.centre.size(); ++i) {
+    std::vector<double> reaction(u[c].size(), 0.0), given_up;
+    for (std::size_t i = 0; i < n; ++i) {
       if (subcycle_impulse[i][c] == 0.0) continue;
       if (W[c][i].face.empty()) st.dropped_yield += std::abs(subcycle_impulse[i][c]);
       else W[c][i].spread(-subcycle_impulse[i][c], reaction);
     }
-    for (std::size_t f = 0; f < u[c].size(); ++f)
-      if (reaction[f] != 0.0) u[c][f] += reaction[f] / face_mass[c][f];
+    if (start_mass != nullptr) given_up.assign(u[c].size(), 0.0);
+    bool any = false;
+    for (std::size_t f = 0; f < u[c].size(); ++f) {
+      if (reaction[f] == 0.0) continue;
+      double take = 1.0;
+      if (start_mass != nullptr && face_mass[c][f] < (*start_mass)[c][f]) {
+        take = face_mass[c][f] / (*start_mass)[c][f];
+        given_up[f] = 1.0 - take;
+        any = true;
+      }
+      u[c][f] += take * reaction[f] / face_mass[c][f];
+    }
+    if (!any) continue;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (subcycle_impulse[i][c] == 0.0) continue;
+      const Row& r = W[c][i];
+      double back = 0.0;  // N s: particle i's part of what its faces could not take
+      for (std::size_t e = 0; e < r.face.size(); ++e) back -= given_up[r.face[e]] * r.w[e] * subcycle_impulse[i][c];
+      (*returned)[i][c] = back;
+      st.clipped += std::abs(back);
+    }
   }
   return st;
 }
@@ -175,7 +199,8 @@ ExchangeStats Exchange::bound_reaction(const ExchangeParticles& p, const flow::F
                                        const flow::Faces& face_mass, const flow::Faces* paste_mask,
                                        const std::vector<std::array<double, 3>>& subcycle_impulse,
                                        std::span<const std::array<double, 3>> velocity,
-                                       std::vector<std::array<double, 3>>& returned) const {
+                                       std::vector<std::array<double, 3>>& returned,
+                                       const flow::Faces* start_mass) const {
   const std::size_t n = p.centre.size();
   if (subcycle_impulse.size() != n || velocity.size() != n)
     throw std::invalid_argument("coupling exchange: sub-cycle impulses, velocities and particles differ in length");
@@ -198,14 +223,17 @@ ExchangeStats Exchange::bound_reaction(const ExchangeParticles& p, const flow::F
       // The excess (m/s) past the hull on the side the reaction pushed, at most the reaction's own kick.
       const double excess = R > 0.0 ? u[c][f] - hi[f] : lo[f] - u[c][f];
       if (!(excess > 0.0)) continue;
-      const double kick = std::abs(R) / face_mass[c][f];
+      // The kick react gave it (m/s): the share min(1, m / m_start) of its reaction with start_mass.
+      const double full = std::abs(R) / face_mass[c][f];
+      const double m0 = start_mass != nullptr ? (*start_mass)[c][f] : 0.0;
+      const double kick = face_mass[c][f] < m0 ? full * face_mass[c][f] / m0 : full;
       // Only a face that kept most of its kick: one whose stresses passed the force on (the paste around a
       // yield-held sphere creeps at 1e-6 m/s, past a hull of ~0) is left alone.
       if (std::copysign(1.0, R) * (u[c][f] - before[c][f]) < kKeptKick * kick) continue;
       if (paste_mask != nullptr && (*paste_mask)[c][f] >= kThinPaste) continue;
       const double back = std::min(excess, kick);
       u[c][f] -= std::copysign(back, R);
-      given_up[f] = back / kick;
+      given_up[f] = back / full;
       ++st.clipped_faces;
       any = true;
     }

@@ -106,10 +106,20 @@ class Exchange {
   // A particle whose support holds no reacting face passes its reaction to none: the sub-cycle gave it no drag
   // then (fluid_velocity's share 0), unless the paste left its faces during the step; that share is dropped
   // and reported (ExchangeStats::dropped_yield).
+  // With `start_mass` (kg, the faces' fluid mass when the sub-cycle's drag was computed: the cycle's start) a
+  // face takes the share min(1, m_now / m_start) of its reaction and the particles reacting on it get back the
+  // rest (`returned`, N s, to add to their momentum; momentum is kept to round-off): the drag ran against the
+  // fluid of the cycle's start, and the part of it that left the face (advected away in the sub-step before the
+  // reaction, or displaced by the particles' volume) cannot take its momentum. The face's kick is then at most
+  // R / m_start, what the drag was computed against. Without it (the flow's advection emptying a face of the
+  // cycle's start between drag and reaction) chapter-7 test 3's splash put the reaction of a 50 mm rock on a face
+  // of paste fraction 0.016 and kicked it from 7.6 to 326 m/s (docs/mixing_scenes.md).
   ExchangeStats react(const ExchangeParticles& p, flow::Faces& u, const flow::Faces& face_mass,
-                      const flow::Faces* paste_mask, const std::vector<std::array<double, 3>>& subcycle_impulse) const;
-  // After the step that took the reaction (its viscous solve and projection, which carry a reaction on through
-  // the fluid's stresses): a face whose reaction left it outside the hull of its velocity before the reaction
+                      const flow::Faces* paste_mask, const std::vector<std::array<double, 3>>& subcycle_impulse,
+                      const flow::Faces* start_mass = nullptr,
+                      std::vector<std::array<double, 3>>* returned = nullptr) const;
+  // In the step that took the reaction, after its viscous solve (which carries a reaction on through the
+  // fluid's stresses) and before its projection (which would spread a face's excess over its neighbours): a face whose reaction left it outside the hull of its velocity before the reaction
   // (`before`) and the velocities of the particles reacting on it (`velocity`, m/s) is brought back to the
   // hull, by at most its reaction, and those particles get back their part of what it gives up (`returned`,
   // N s, to add to their momentum): particles + fluid keep their momentum to round-off. Why: the sub-cycle's
@@ -119,12 +129,14 @@ class Exchange {
   // (case 3 at t = 1.305 s: 0.19 -> 16 m/s in one reaction, 60 m/s two cycles later; VALIDATION.md). A face
   // that passes the force on (a yield-held sphere, a settling one) is not touched: only a face beyond the hull
   // that still holds kKeptKick of its reaction's kick is.
-  // Same p, face_mass, paste_mask and subcycle_impulse as the react call.
+  // Same p, face_mass, paste_mask, subcycle_impulse and start_mass as the react call (a face's kick is then the
+  // share of its reaction react let it take).
   ExchangeStats bound_reaction(const ExchangeParticles& p, const flow::Faces& before, flow::Faces& u,
                                const flow::Faces& face_mass, const flow::Faces* paste_mask,
                                const std::vector<std::array<double, 3>>& subcycle_impulse,
                                std::span<const std::array<double, 3>> velocity,
-                               std::vector<std::array<double, 3>>& returned) const;
+                               std::vector<std::array<double, 3>>& returned,
+                               const flow::Faces* start_mass = nullptr) const;
   ExchangeStats correct(double dt, const ExchangeParticles& p, std::vector<std::array<double, 3>>& v, flow::Faces& u,
                         const flow::Faces& face_mass, const flow::Faces* paste_mask,
                         const std::vector<std::array<double, 3>>& reference,

@@ -318,6 +318,10 @@ StepStats FlowSolver::step(double dt) {
     throw when(e);
   }
   require_finite_faces(g_, u_, "velocity", at("after the viscous solve"));
+  if (coupled && exchange_viscous_) {
+    exchange_viscous_(dt, u_, mass);
+    require_finite_faces(g_, u_, "velocity", at("after the particles' bounded reaction"));
+  }
   // Give the last gradient back and project for the whole pressure, with the last one as the guess: the same
   // result as projecting for the increment, and the same right-hand side (and CG iterations) as before.
   pressure_.subtract_gradient(-dt, rho, p_, u_);

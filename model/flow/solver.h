@@ -88,9 +88,12 @@ class FlowSolver {
   // A second hook, `after`, is called at the end of the step (after the projection, with the same masses):
   // the particles' drag on the fluid's change over the step (exchange.h, correct); the divergence it leaves
   // is the next step's continuity projection's.
+  // A third, `viscous`, is called between the viscous solve and the projection (same masses): where the
+  // reaction, once the fluid's stresses have passed it on, is bounded (exchange.h, bound_reaction) before the
+  // projection spreads what a face could not pass on over its neighbours.
   using ExchangeHook = std::function<void(double dt, Faces& u, const Faces& fluid_mass)>;
-  void set_exchange(ExchangeHook before, ExchangeHook after = {}) {
-    exchange_ = std::move(before), exchange_after_ = std::move(after);
+  void set_exchange(ExchangeHook before, ExchangeHook after = {}, ExchangeHook viscous = {}) {
+    exchange_ = std::move(before), exchange_after_ = std::move(after), exchange_viscous_ = std::move(viscous);
   }
   // The pressure impulses of the last step with particles, dt grad p per face (N s/m3; 0 on walls and where no
   // gradient acts): the continuity projection's (it acted on the fluid's mass at the step's start, eps_f,start:
@@ -155,7 +158,7 @@ class FlowSolver {
   std::vector<double> p_, alpha_, mu_;      // p_: the pressure (Pa)
   std::vector<double> eps_, eps_next_;      // fluid fraction now and at the end of the next step (empty: 1)
   bool with_rate_ = true;
-  ExchangeHook exchange_, exchange_after_;
+  ExchangeHook exchange_, exchange_after_, exchange_viscous_;
   Faces continuity_impulse_, pressure_impulse_;  // N s/m3, set by a step with particles
   bool pressure_ready_ = false;             // p_ balances gravity (set by the first step after the paste changes)
   double t_ = 0.0;

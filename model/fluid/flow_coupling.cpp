@@ -275,7 +275,7 @@ void pack_state(IO& io, S& st, C& coupled, std::vector<char>& member, std::vecto
   };
   io(member), io(list), io(step), io(cycles);
   io(st.p.x), io(st.p.v), io(st.start.u), io(st.start.share), io(st.start.beta), io(st.start.shift), io(st.impulse);
-  io(st.start.x), faces(st.start.mask), io(st.start.stuck);
+  io(st.start.x), faces(st.start.mask), faces(st.start.mass), io(st.start.stuck);
   io(st.last), io(coupled.x_flow), io(coupled.pending), io(coupled.drag), io(coupled.interval);
   auto& f = st.flow;
   faces(f.u), faces(f.continuity_impulse), faces(f.pressure_impulse);
@@ -286,9 +286,9 @@ void pack_state(IO& io, S& st, C& coupled, std::vector<char>& member, std::vecto
 // The raw-byte structs of the flow state, by size: a checkpoint of another build (a field added to the cycle's
 // stats, say) is then named as such instead of reading as damaged bytes.
 std::string flow_sizes_tag() {
-  // "stuck": the layout with the start's stuck flags (the implicit stick, coupled_flow.h); a state without them
-  // is another version's.
-  return fmt::format("flow state: CycleStats {} StepStats {} Totals {} stuck", sizeof(coupling::CycleStats),
+  // "stuck": the layout with the start's stuck flags (the implicit stick, coupled_flow.h), "mass" with its
+  // faces' fluid mass (the reaction's share, exchange.h); a state without them is another version's.
+  return fmt::format("flow state: CycleStats {} StepStats {} Totals {} stuck mass", sizeof(coupling::CycleStats),
                      sizeof(flow::FlowSolver::State::last), sizeof(flow::FlowSolver::State::totals));
 }
 

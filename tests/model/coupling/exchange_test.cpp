@@ -303,6 +303,69 @@ TEST_CASE("exchange: the bounded reaction brings a thin-paste face kicked past i
   CHECK(ex.bound_reaction(p.view(), before, u, M, &mask, J, p.v, back).clipped_faces == 0);
 }
 
+// The reaction meets the mass its drag was computed against (Exchange::react with start_mass): a face that kept
+// its fluid mass since the cycle's start takes its whole reaction, bit for bit as without start_mass; one whose
+// mass fell to a fraction r takes r of it, so its kick is r R / (r m_start) = R / m_start, never more; the
+// particle gets back what the faces could not take, and particles + fluid keep their momentum to round-off.
+// (Chapter-7 test 3: a face of the cycle's start emptied to paste fraction 0.016 by the sub-step's advection was
+// kicked from 7.6 to 326 m/s by a 50 mm rock's reaction.)
+TEST_CASE("exchange: a face emptied since the drag was computed takes only its remaining mass's share of the reaction") {
+  const flow::Grid g = periodic_box();
+  const flow::Faces M0 = faces(g, 1843.0 * g.cell_volume());
+  const flow::Faces mask = faces(g, 1.0);
+  Cloud p;
+  p.x = {{0.033, 0.027, 0.051}};
+  p.d = {0.005};
+  p.m = {1.8e-4};
+  p.beta = {1.0};
+  p.yield = {0.0};
+  p.v = {{0.0, 0.0, -1.0}};
+  const std::vector<std::array<double, 3>> J = {{2e-6, 0.0, 1e-5}};
+  const Exchange ex(g, 2.0);
+  flow::Faces plain = faces(g, 0.0), kept = plain;
+  ex.react(p.view(), plain, M0, &mask, J);
+  std::vector<std::array<double, 3>> back;
+  const coupling::ExchangeStats same = ex.react(p.view(), kept, M0, &mask, J, &M0, &back);
+  for (int c = 0; c < 3; ++c) CHECK(kept[c] == plain[c]);
+  CHECK(back[0] == std::array<double, 3>{0.0, 0.0, 0.0});
+  CHECK(same.clipped == 0.0);
+  // The z faces of one layer (k = 5) lost 99 % of their mass (advected away), the others kept it.
+  flow::Faces M = M0;
+  const auto fd = g.face_dims(2);
+  for (int j = 0; j < fd[1]; ++j)
+    for (int i = 0; i < fd[0]; ++i) M[2][g.face(2, {i, j, 5})] *= 0.01;
+  flow::Faces u = faces(g, 0.0);
+  ex.react(p.view(), u, M, &mask, J, &M0, &back);
+  double fluid = 0.0, emptied = 0.0;
+  for (std::size_t f = 0; f < u[2].size(); ++f) {
+    fluid += M[2][f] * u[2][f];
+    CHECK(std::abs(u[2][f] - plain[2][f]) <= 1e-15 * std::abs(plain[2][f]) + 1e-300);  // the kick: R / m_start
+    if (M[2][f] < M0[2][f]) emptied += M0[2][f] * plain[2][f];
+  }
+  CHECK(emptied != 0.0);                              // the particle's support reaches the emptied layer
+  CHECK(back[0][2] == doctest::Approx(0.99 * emptied).epsilon(1e-9));  // it gets back what that layer could not take
+  CHECK(back[0][0] == 0.0);                           // the x faces kept their mass
+  CHECK(std::abs(fluid + J[0][2] + back[0][2]) <= 1e-18);
+  // bound_reaction with the same start_mass measures the kick react gave (R / m_start where the face lost mass,
+  // not R / m): a thin face (2 % paste) that lost half its mass, kicked past the rock's own speed, is brought
+  // back to the hull, and particles + fluid still keep their momentum to round-off.
+  const flow::Faces thin0 = faces(g, (1.2 + 0.02 * 1843.0) * g.cell_volume()), thin_mask = faces(g, 0.02);
+  flow::Faces half = thin0;
+  for (auto& m : half[2]) m *= 0.5;
+  const std::vector<std::array<double, 3>> held = {{0.0, 0.0, -1e-4}};  // the rock (0.05 m/s up) was held back
+  p.v = {{0.0, 0.0, 0.05}};
+  flow::Faces w = faces(g, 0.0);
+  std::vector<std::array<double, 3>> took, clipped;
+  ex.react(p.view(), w, half, &thin_mask, held, &thin0, &took);
+  CHECK(took[0][2] == doctest::Approx(5e-5).epsilon(1e-9));  // the faces took half: the rock gets half back
+  const coupling::ExchangeStats b = ex.bound_reaction(p.view(), faces(g, 0.0), w, half, &thin_mask, held, p.v, clipped, &thin0);
+  CHECK(b.clipped_faces > 0);
+  double top = 0.0, moved = 0.0;
+  for (std::size_t f = 0; f < w[2].size(); ++f) top = std::max(top, w[2][f]), moved += half[2][f] * w[2][f];
+  CHECK(top <= 0.05 + 1e-15);
+  CHECK(std::abs(moved + held[0][2] + took[0][2] + clipped[0][2]) <= 1e-18);
+}
+
 // The face weights computed once per position set (Exchange::face_weights, what a coupling cycle keeps) give the
 // very numbers of computing them in every call, in a walled box (wall faces left out) with a paste mask, and
 // weights of another particle count are refused.
