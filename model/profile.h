@@ -12,11 +12,15 @@ namespace pastemix::model {
 //                   fused into `kick`)
 //   neighbor        list rebuilds (and the threads' partition, and the spatial sort of the particles)
 //   contact_forces  the pair pass (contact and rolling laws over the pair list)
-//   walls           the wall pass (forces/wall_forces.h): wall forces of the particles near a wall
-//   kick            the closing half kick, the next opening half kick and drift of the particles no kick
-//                   pass claims; gravity (forces/gravity.h) is a term of this kick (a = f/m + g)
-//   fluid           the fluid pass (forces/fluid_forces.h): the field's update, then the fluid kicks and
-//                   drifts of the particles inside a region
+//   walls           the wall pass (forces/wall_forces.h): wall forces of the particles near a wall; with
+//                   rotation and a kick-time rolling friction (the block kick, World::close_kicks_rolling) only
+//                   its per-step set-up: each particle's wall forces are then computed just before its kick and
+//                   timed in `kick`
+//   kick            the closing half kick, the next opening half kick and drift of the particles; gravity
+//                   (forces/gravity.h) is a term of this kick (a = f/m + g); in the block kick also the kick
+//                   passes' particles (the fluid's) and the wall forces
+//   fluid           the fluid pass (forces/fluid_forces.h): the field's update, then (outside the block kick)
+//                   the fluid kicks and drifts of the particles inside a region
 //   wait            thread 0 waiting at the step's barrier for the other threads
 //   output          writing snapshots (run.cpp)
 struct Profile {

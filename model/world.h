@@ -148,7 +148,8 @@ class World {
   // The closing half kick of particle a (and the next opening half kick and drift, Then::kick_drift).
   void close_kick(Lane& lane, long a, Then then, double h);
   // close_kick(Then::kick_drift) of the lane's unclaimed particles with the rolling friction, in blocks.
-  void close_kicks_rolling(Lane& lane, double h);
+  template <class Law, class Roll>
+  void close_kicks_rolling(const PassStep<Law, Roll>& s, Lane& lane, double h);
   void publish_ghost(const Lane& lane, long a);
   // Whether the lists must be rebuilt at time t, the particles having moved sqrt(moved2) since the last.
   bool rebuild_due(double moved2, double t) const;
