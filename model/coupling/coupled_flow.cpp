@@ -53,9 +53,16 @@ std::vector<double> CoupledFlow::fluid_fraction(const CoupledParticles& p) const
   std::vector<double> eps = solid_fraction(flow_.grid(), weights_at(p.x, p.d).stencil, p.d);
   for (std::size_t c = 0; c < eps.size(); ++c) {
     eps[c] = 1.0 - eps[c];
-    if (!(eps[c] > 0.0))
-      throw RuntimeFailure(fmt::format("coupling: the particles fill cell {} (fluid fraction {:.4g}): the kernel "
-                                       "width c = {} is too narrow for this packing", c, eps[c], s_.width_factor));
+    if (!(eps[c] > 0.0)) {
+      const flow::Grid& g = flow_.grid();
+      const long i = static_cast<long>(c) % g.n[0], j = (static_cast<long>(c) / g.n[0]) % g.n[1];
+      const long k = static_cast<long>(c) / (static_cast<long>(g.n[0]) * g.n[1]);
+      throw RuntimeFailure(fmt::format(
+          "coupling: the particles fill cell {} ({}, {}, {}) at ({:.4g}, {:.4g}, {:.4g}) m (fluid fraction {:.4g}) "
+          "at t = {:.9g} s of the flow: the kernel width c = {} is too narrow for this packing", c, i, j, k,
+          g.origin[0] + (i + 0.5) * g.h[0], g.origin[1] + (j + 0.5) * g.h[1], g.origin[2] + (k + 0.5) * g.h[2], eps[c],
+          flow_.time(), s_.width_factor));
+    }
   }
   return eps;
 }

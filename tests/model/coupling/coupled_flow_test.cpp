@@ -68,3 +68,34 @@ TEST_CASE("coupled flow: a rock whose solid arrives faster than a sub-step can c
   CHECK(moved.flow_steps > 1);      // the refused sub-step was split again
   CHECK(std::isfinite(flow.max_speed()));
 }
+
+// Particles packed beyond what the kernel spreads (chapter-7 test 3 with flow: "the particles fill cell 4766"
+// somewhere after t = 0.59 s, with no time or place in the message): the diagnosis names the cell by its indices
+// and centre, and the flow's time.
+TEST_CASE("coupled flow: an overfilled cell is named with its place and the time") {
+  flow::FlowSettings fs;
+  fs.max_time_step = 0.01;
+  flow::FlowSolver flow = pastemix::test::paste_column({6, 6, 16}, 0.01, 1843.0, 0.1037, fs);
+  coupling::CouplingSettings cs;
+  cs.width_factor = 1.25;
+  coupling::CoupledFlow cf(flow, cs);
+  coupling::CoupledParticles p;
+  const double d = 0.012;
+  for (int k = 0; k < 4; ++k) {  // four 12 mm spheres on one spot: four times one sphere's peak solid fraction
+    p.x.push_back({0.035, 0.035, 0.055});
+    p.v.push_back({0.0, 0.0, 0.0});
+    p.d.push_back(d);
+    p.m.push_back(2760.0 * std::numbers::pi * d * d * d / 6.0);
+    p.drag.push_back(stokes_drag(d, 0.7));
+  }
+  try {
+    cf.start(p);
+    FAIL("an overfilled cell was accepted");
+  } catch (const RuntimeFailure& e) {
+    const std::string what = e.what();
+    CAPTURE(what);
+    CHECK(what.find("the particles fill cell") != std::string::npos);
+    CHECK(what.find("(3, 3, 5) at (0.035, 0.035, 0.055) m") != std::string::npos);
+    CHECK(what.find("at t = 0 s of the flow") != std::string::npos);
+  }
+}
