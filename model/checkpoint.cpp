@@ -133,6 +133,10 @@ std::filesystem::path checkpoint_path(const std::filesystem::path& out_dir, cons
   return out_dir / (stem + ".checkpoint.h5");
 }
 
+std::filesystem::path failed_checkpoint_path(const std::filesystem::path& out_dir, const std::string& stem) {
+  return out_dir / (stem + ".failed.checkpoint.h5");
+}
+
 void write_checkpoint(const std::filesystem::path& path, RunOutput& out, const World& world, const RestMonitor& rest,
                       double wall_seconds, const std::string& resume_with) {
   const std::vector<char> state = save_state(world, rest, out);

@@ -40,6 +40,9 @@ struct Scene;
 
 // DIR/STEM.checkpoint.h5.
 std::filesystem::path checkpoint_path(const std::filesystem::path& out_dir, const std::string& stem);
+// Where run_scene keeps the last checkpoint of a run that stopped on a RuntimeFailure (OUT/STEM.failed.checkpoint.h5):
+// not resumed by itself; renamed to checkpoint_path it resumes like any other.
+std::filesystem::path failed_checkpoint_path(const std::filesystem::path& out_dir, const std::string& stem);
 
 struct CheckpointInfo {
   long step = 0;              // steps done

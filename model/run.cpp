@@ -161,13 +161,24 @@ RunSummary run_checked(const Scene& scene, const std::filesystem::path& out_dir,
 RunSummary run_scene(const Scene& scene, const std::filesystem::path& out_dir, const RunOptions& opt) {
   try {
     return run_checked(scene, out_dir, opt);
-  } catch (const RuntimeFailure&) {
-    // A blow-up is deterministic: resuming the same scene would meet it again, and another scene may not
-    // resume it. Its checkpoint would only stop the next fresh run.
+  } catch (const RuntimeFailure& e) {
+    // A blow-up is deterministic: resuming the same scene would meet it again, so under its own name the
+    // checkpoint would only stop the next fresh run. It is kept under another (failed_checkpoint_path), where
+    // nothing resumes it by itself: the state shortly before the failure, for a diagnosis (chapter-7 test 3's
+    // overfilled cell took 17 minutes of rerun to see again, docs/mixing_scenes.md).
     const std::string stem = opt.stem.empty() ? std::filesystem::path(scene.path).stem().string() : opt.stem;
+    const std::filesystem::path ckpt = checkpoint_path(out_dir, stem), kept = failed_checkpoint_path(out_dir, stem);
     std::error_code ec;
-    std::filesystem::remove(checkpoint_path(out_dir, stem), ec);
-    throw;
+    std::filesystem::remove(kept, ec);
+    if (!std::filesystem::exists(ckpt, ec)) throw;
+    std::filesystem::rename(ckpt, kept, ec);
+    if (ec) {
+      std::filesystem::remove(ckpt, ec);
+      throw;
+    }
+    throw RuntimeFailure(fmt::format("{}\nthe last checkpoint is kept as {} for a diagnosis (to continue from it, "
+                                     "e.g. with a build that logs more, rename it to {} and run with --resume)",
+                                     e.what(), kept.string(), ckpt.filename().string()));
   }
 }
 

@@ -23,10 +23,12 @@
 #include <doctest/doctest.h>
 #include <fmt/format.h>
 
+#include "base/error.h"
 #include "base/h5.h"
 #include "model/checkpoint.h"
 #include "model/run.h"
 #include "model/scene.h"
+#include "tests/model/scene_text.h"
 #include "tests/run_command.h"
 
 namespace fs = std::filesystem;
@@ -263,5 +265,47 @@ TEST_CASE("run: checkpoints by [output] checkpoint_interval change no bit and fo
   const H5Reader a(plain.h5), b(ck.h5);
   same_tree(a, b, "/snapshots");
   same_tree(a, b, "/timeseries");
+  fs::remove_all(dir);
+}
+
+// A run that stops on a RuntimeFailure keeps its last checkpoint under another name (failed_checkpoint_path):
+// nothing resumes it by itself, and renamed back it resumes to the same failure. Two spheres fall through the
+// open bottom of the domain (no floor): 50 % of the mass leaves, above max_escaped_fraction = 5 %, at t ~ 0.11 s,
+// after the checkpoints every 0.02 s of simulated time.
+TEST_CASE("run: a failed run keeps its last checkpoint for a diagnosis, and it resumes to the same failure") {
+  using namespace pastemix::model;
+  const fs::path dir = fs::absolute(fmt::format("model_checkpoint_failed_{}", ::getpid()));
+  fs::remove_all(dir);
+  const std::string text =
+      "seed = 3\ntime_step = 1e-4\nend_time = 1.0\n[domain]\nmin = [-0.5, -0.5, -0.05]\nmax = [0.5, 0.5, 1.0]\n"
+      "on_exit = \"remove\"\n[physics]\ngravity = [0, 0, -9.81]\n[contact]\nlaw = \"hertz_mindlin\"\n" +
+      test::material("rock", 2760, 4.68e7, 0.19) + test::interaction("rock/rock", 0.5, 0.0) +
+      "[[particle]]\nmaterial = \"rock\"\nradius = 0.005\nposition = [0, 0, 0.01]\n"
+      "[[particle]]\nmaterial = \"rock\"\nradius = 0.005\nposition = [0.2, 0, 0.3]\n"
+      "[output]\ninterval = 0.5\ncheckpoint_interval = 0.02\n";
+  const Scene scene = parse_scene(text, (dir / "fall.toml").string());
+  RunOptions ro;
+  ro.progress = false;
+  auto failure = [&] {
+    try {
+      run_scene(scene, dir, ro);
+    } catch (const pastemix::RuntimeFailure& e) {
+      return std::string(e.what());
+    }
+    return std::string("(no failure)");
+  };
+  const std::string first = failure();
+  CAPTURE(first);
+  CHECK(first.find("left the domain") != std::string::npos);
+  CHECK(first.find("the last checkpoint is kept as") != std::string::npos);
+  CHECK(!fs::exists(checkpoint_path(dir, "fall")));
+  REQUIRE(fs::exists(failed_checkpoint_path(dir, "fall")));
+  // A fresh run is not stopped by it, and meets the same failure (the kept file is replaced).
+  CHECK(failure() == first);
+  // Renamed to the checkpoint's own name, it resumes: the same failure, the same particle and time.
+  fs::rename(failed_checkpoint_path(dir, "fall"), checkpoint_path(dir, "fall"));
+  ro.resume = true;
+  const std::string resumed = failure();
+  CHECK(resumed.substr(0, resumed.find('\n')) == first.substr(0, first.find('\n')));
   fs::remove_all(dir);
 }
