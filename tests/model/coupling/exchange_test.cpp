@@ -47,6 +47,18 @@ double momentum(const Cloud& p, const flow::Faces& u, const flow::Faces& M, int 
   return s;
 }
 
+// One 5 mm rock of 0.18 g with a unit drag coefficient and no yield part, off the cells' centres.
+Cloud one_rock(const std::array<double, 3>& v) {
+  Cloud p;
+  p.x = {{0.033, 0.027, 0.051}};
+  p.d = {0.005};
+  p.m = {1.8e-4};
+  p.beta = {1.0};
+  p.yield = {0.0};
+  p.v = {v};
+  return p;
+}
+
 }  // namespace
 
 TEST_CASE("exchange: one particle's drag impulse is the implicit two-phase closed form, for dt beta / m from 1e-2 to 1e6") {
@@ -218,13 +230,7 @@ TEST_CASE("exchange: faces of paste fraction below 1 % are air for the paste dra
   for (const double a : {0.005, 0.02}) {
     CAPTURE(a);
     const flow::Faces mask = faces(g, a);
-    Cloud p;
-    p.x = {{0.033, 0.027, 0.051}};
-    p.d = {0.005};
-    p.m = {1.8e-4};
-    p.beta = {1.0};
-    p.yield = {0.0};
-    p.v = {{0.0, 0.0, -1.0}};
+    Cloud p = one_rock({0.0, 0.0, -1.0});
     std::vector<double> share;
     const Exchange ex(g, 2.0);
     ex.fluid_velocity(p.view(), faces(g, 0.0), M, &mask, share);
@@ -252,13 +258,7 @@ TEST_CASE("exchange: faces of paste fraction below 1 % are air for the paste dra
 TEST_CASE("exchange: the bounded reaction brings a thin-paste face kicked past its particles back to their hull") {
   const flow::Grid g = periodic_box();
   const flow::Faces M = faces(g, (1.2 + 0.02 * 1843.0) * g.cell_volume());
-  Cloud p;
-  p.x = {{0.033, 0.027, 0.051}};
-  p.d = {0.005};
-  p.m = {1.8e-4};
-  p.beta = {1.0};
-  p.yield = {0.0};
-  p.v = {{0.0, 0.0, 0.05}};
+  Cloud p = one_rock({0.0, 0.0, 0.05});
   const std::vector<std::array<double, 3>> J = {{0.0, 0.0, -1e-4}};  // the rock was held back: the faces go up
   const Exchange ex(g, 2.0);
   const flow::Faces before = faces(g, 0.0);
@@ -313,13 +313,7 @@ TEST_CASE("exchange: a face emptied since the drag was computed takes only its r
   const flow::Grid g = periodic_box();
   const flow::Faces M0 = faces(g, 1843.0 * g.cell_volume());
   const flow::Faces mask = faces(g, 1.0);
-  Cloud p;
-  p.x = {{0.033, 0.027, 0.051}};
-  p.d = {0.005};
-  p.m = {1.8e-4};
-  p.beta = {1.0};
-  p.yield = {0.0};
-  p.v = {{0.0, 0.0, -1.0}};
+  Cloud p = one_rock({0.0, 0.0, -1.0});
   const std::vector<std::array<double, 3>> J = {{2e-6, 0.0, 1e-5}};
   const Exchange ex(g, 2.0);
   flow::Faces plain = faces(g, 0.0), kept = plain;
