@@ -215,6 +215,55 @@ void CoupledFlow::dem_step(CoupledParticles& p, std::size_t i, double dt, int st
   }
 }
 
+namespace {
+// The books of the exchange: the faces' momentum change inside the hooks against the particles' impulses J.
+void book(CycleStats& st, const flow::Faces& before, const flow::Faces& u, const flow::Faces& mass,
+          const std::vector<std::array<double, 3>>& J) {
+  for (int c = 0; c < 3; ++c) {
+    for (std::size_t f = 0; f < u[c].size(); ++f) st.fluid_exchange[c] += mass[c][f] * (u[c][f] - before[c][f]);
+    for (const auto& j : J) st.particle_exchange[c] += j[c], st.exchange_scale += std::abs(j[c]);
+  }
+}
+
+// Momentum `back` (N s per particle) handed back to the particles, and booked as theirs.
+void give_back(CycleStats& st, CoupledParticles& p, const std::vector<std::array<double, 3>>& back) {
+  for (std::size_t i = 0; i < p.size(); ++i)
+    for (int c = 0; c < 3; ++c) {
+      p.v[i][c] += back[i][c] / p.m[i];
+      st.particle_exchange[c] += back[i][c], st.exchange_scale += std::abs(back[i][c]);
+    }
+}
+}  // namespace
+
+// The sub-cycle's reaction -W^T J_sub on the faces (u, in/out), each face the share of it its fluid mass since
+// the cycle's start allows; the particles get back the rest (Exchange::react).
+void CoupledFlow::react_subcycle(const ExchangeParticles& at_start, const Start& s0, const std::vector<Vec>& sub,
+                                 CoupledParticles& p, flow::Faces& u, const flow::Faces& mass, CycleStats& st) const {
+  const flow::Faces before = u;
+  std::vector<Vec> back;  // what faces emptied since the cycle's start could not take
+  const ExchangeStats e = exchange_.react(at_start, u, mass, &s0.mask, sub, &s0.mass, &back);
+  st.dropped_yield += e.dropped_yield;
+  st.returned_reaction += e.clipped;
+  book(st, before, u, mass, sub);
+  give_back(st, p, back);
+}
+
+// The reaction bounded to the hull of `before` (the faces before it) and the particles' velocities
+// (Exchange::bound_reaction); what the faces give up goes back to the particles.
+void CoupledFlow::bound_subcycle(const ExchangeParticles& at_start, const Start& s0, const std::vector<Vec>& sub,
+                                 const flow::Faces& before, CoupledParticles& p, flow::Faces& u,
+                                 const flow::Faces& mass, CycleStats& st) const {
+  const flow::Faces entry = u;
+  std::vector<Vec> back;
+  const ExchangeStats e = exchange_.bound_reaction(at_start, before, u, mass, &s0.mask, sub, p.v, back, &s0.mass);
+  st.clipped_reaction += e.clipped;
+  if (e.clipped_faces == 0) return;
+  // The books: the faces gave up what the particles got back (u changed here, outside the hooks' own).
+  book(st, entry, u, mass, back);
+  for (std::size_t i = 0; i < p.size(); ++i)
+    for (int c = 0; c < 3; ++c) p.v[i][c] += back[i][c] / p.m[i];
+}
+
 // The flow over the interval T, eps_f linear in time between the start and the end positions; the exchange's
 // hooks in each sub-step; then the particles' pending pressure impulses.
 void CoupledFlow::flow_interval(CoupledParticles& p, double T, const Start& s0, const std::vector<Vec>& sub,
@@ -262,55 +311,24 @@ void CoupledFlow::flow_interval(CoupledParticles& p, double T, const Start& s0, 
     if (!last)
       for (std::size_t c = 0; c < eps.size(); ++c) eps[c] = eps_start[c] + r1 * (eps_end[c] - eps_start[c]);
     flow_.set_next_fluid_fraction(std::move(eps));
-    // The books of the exchange: the faces' momentum change inside the hooks against the particles' impulses.
-    auto book = [&](const flow::Faces& before, const flow::Faces& u, const flow::Faces& mass, const std::vector<Vec>& J) {
-      for (int c = 0; c < 3; ++c) {
-        for (std::size_t f = 0; f < u[c].size(); ++f) st.fluid_exchange[c] += mass[c][f] * (u[c][f] - before[c][f]);
-        for (std::size_t i = 0; i < n; ++i) st.particle_exchange[c] += J[i][c], st.exchange_scale += std::abs(J[i][c]);
-      }
-    };
     flow::Faces before_reaction;  // the faces before the sub-cycle's reaction (bound_reaction's hull)
     auto react = [&](double, flow::Faces& u, const flow::Faces& mass) {
       if (j != 0) return;  // the sub-cycle's reaction once, in the first sub-step
-      const flow::Faces before = u;
       before_reaction = u;
-      std::vector<Vec> back;  // what faces emptied since the cycle's start could not take
-      const ExchangeStats e = exchange_.react(at_start_view, u, mass, &s0.mask, sub, &s0.mass, &back);
-      st.dropped_yield += e.dropped_yield;
-      st.returned_reaction += e.clipped;
-      book(before, u, mass, sub);
-      for (std::size_t i = 0; i < n; ++i)
-        for (int c = 0; c < 3; ++c) {
-          p.v[i][c] += back[i][c] / p.m[i];
-          st.particle_exchange[c] += back[i][c], st.exchange_scale += std::abs(back[i][c]);
-        }
+      react_subcycle(at_start_view, s0, sub, p, u, mass, st);
     };
     // The reaction of the first sub-step, bounded once the viscous solve has passed it on, and before the
     // projection (which spread a thin face's excess over its neighbours: chapter-7 test 3, a face of 1 % paste
     // kicked to 49 m/s by 117 small rocks' reaction came out of the projection at 38 m/s and its neighbours at
     // up to 31 m/s, past the step guard's floor, docs/mixing_scenes.md).
     auto bound = [&](double, flow::Faces& u, const flow::Faces& mass) {
-      if (j == 0) {
-        const flow::Faces entry = u;
-        std::vector<Vec> back;
-        const ExchangeStats e = exchange_.bound_reaction(at_start_view, before_reaction, u, mass, &s0.mask, sub, p.v, back, &s0.mass);
-        st.clipped_reaction += e.clipped;
-        if (e.clipped_faces > 0) {
-          for (std::size_t i = 0; i < n; ++i)
-            for (int c = 0; c < 3; ++c) p.v[i][c] += back[i][c] / p.m[i];
-          // The books: the faces gave up what the particles got back (u changed here, outside the hooks' own).
-          for (int c = 0; c < 3; ++c)
-            for (std::size_t i = 0; i < n; ++i) st.particle_exchange[c] += back[i][c], st.exchange_scale += std::abs(back[i][c]);
-          for (int c = 0; c < 3; ++c)
-            for (std::size_t f = 0; f < u[c].size(); ++f) st.fluid_exchange[c] += mass[c][f] * (u[c][f] - entry[c][f]);
-        }
-      }
+      if (j == 0) bound_subcycle(at_start_view, s0, sub, before_reaction, p, u, mass, st);
     };
     auto correct = [&](double h, flow::Faces& u, const flow::Faces& mass) {
       const flow::Faces mask = flow::face_means(g, flow_.alpha()), before = u;
       const ExchangeStats e = exchange_.correct(h, view, p.v, u, mass, &mask, reference, impulse);
       st.exchange_iterations += e.iterations;
-      book(before, u, mass, impulse);
+      book(st, before, u, mass, impulse);
       // The next sub-step's change is measured from where this one left the fluid at the particles.
       std::vector<double> unused;
       if (!last) reference = exchange_.fluid_velocity(view, u, mass, &mask, unused);

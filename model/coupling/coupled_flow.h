@@ -170,6 +170,11 @@ class CoupledFlow {
   void dem_step(CoupledParticles& p, std::size_t i, double dt, int steps, const ExtraForce& extra, Start& s0,
                 std::vector<Vec>& sub, CycleStats& st) const;
   void flow_interval(CoupledParticles& p, double T, const Start& s0, const std::vector<Vec>& sub, CycleStats& st);
+  void react_subcycle(const ExchangeParticles& at_start, const Start& s0, const std::vector<Vec>& sub,
+                      CoupledParticles& p, flow::Faces& u, const flow::Faces& mass, CycleStats& st) const;
+  void bound_subcycle(const ExchangeParticles& at_start, const Start& s0, const std::vector<Vec>& sub,
+                      const flow::Faces& before, CoupledParticles& p, flow::Faces& u, const flow::Faces& mass,
+                      CycleStats& st) const;
   std::vector<double> fluid_fraction(const CoupledParticles& p) const;  // eps_f = 1 - eps_s per cell
   // Kernel mean of face impulses at a position, over the faces that are not box walls (renormalised there).
   std::array<double, 3> face_mean(const Stencil& s, const flow::Faces& f) const;
