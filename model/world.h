@@ -147,7 +147,8 @@ class World {
   void step_lane(const PassStep<Law, Roll>& s, Lane& lane, Then then, double h);
   // The closing half kick of particle a (and the next opening half kick and drift, Then::kick_drift).
   void close_kick(Lane& lane, long a, Then then, double h);
-  // close_kick(Then::kick_drift) of the lane's unclaimed particles with the rolling friction, in blocks.
+  // The force passes and close_kick(Then::kick_drift) of every particle of the lane with the rolling friction,
+  // in blocks (a kick pass's particles' velocities by the pass).
   template <class Law, class Roll>
   void close_kicks_rolling(const PassStep<Law, Roll>& s, Lane& lane, double h);
   void publish_ghost(const Lane& lane, long a);

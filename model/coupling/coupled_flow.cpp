@@ -55,8 +55,7 @@ std::vector<double> CoupledFlow::fluid_fraction(const CoupledParticles& p) const
     eps[c] = 1.0 - eps[c];
     if (!(eps[c] > 0.0)) {
       const flow::Grid& g = flow_.grid();
-      const long i = static_cast<long>(c) % g.n[0], j = (static_cast<long>(c) / g.n[0]) % g.n[1];
-      const long k = static_cast<long>(c) / (static_cast<long>(g.n[0]) * g.n[1]);
+      const auto [i, j, k] = g.cell_at(static_cast<long>(c));
       throw RuntimeFailure(fmt::format(
           "coupling: the particles fill cell {} ({}, {}, {}) at ({:.4g}, {:.4g}, {:.4g}) m (fluid fraction {:.4g}) "
           "at t = {:.9g} s of the flow: the kernel width c = {} is too narrow for this packing", c, i, j, k,

@@ -152,6 +152,19 @@ ExchangeStats Exchange::apply(double dt, const ExchangeParticles& p, std::vector
   return st;
 }
 
+void Exchange::hand_back(int c, const RowTable& W, const std::vector<double>& given_up,
+                         const std::vector<std::array<double, 3>>& subcycle_impulse,
+                         std::vector<std::array<double, 3>>& returned, ExchangeStats& st) {
+  for (std::size_t i = 0; i < subcycle_impulse.size(); ++i) {
+    if (subcycle_impulse[i][c] == 0.0) continue;
+    const Row r = W[i];
+    double back = 0.0;  // N s: particle i's part of what its faces gave up
+    for (std::size_t e = 0; e < r.face.size(); ++e) back -= given_up[r.face[e]] * r.w[e] * subcycle_impulse[i][c];
+    returned[i][c] = back;
+    st.clipped += std::abs(back);
+  }
+}
+
 ExchangeStats Exchange::react(const ExchangeParticles& p, flow::Faces& u, const flow::Faces& face_mass,
                               const flow::Faces* paste_mask, const std::vector<std::array<double, 3>>& subcycle_impulse,
                               const flow::Faces* start_mass, std::vector<std::array<double, 3>>* returned) const {
@@ -182,15 +195,7 @@ ExchangeStats Exchange::react(const ExchangeParticles& p, flow::Faces& u, const 
       }
       u[c][f] += take * reaction[f] / face_mass[c][f];
     }
-    if (!any) continue;
-    for (std::size_t i = 0; i < n; ++i) {
-      if (subcycle_impulse[i][c] == 0.0) continue;
-      const Row& r = W[c][i];
-      double back = 0.0;  // N s: particle i's part of what its faces could not take
-      for (std::size_t e = 0; e < r.face.size(); ++e) back -= given_up[r.face[e]] * r.w[e] * subcycle_impulse[i][c];
-      (*returned)[i][c] = back;
-      st.clipped += std::abs(back);
-    }
+    if (any) hand_back(c, W[c], given_up, subcycle_impulse, *returned, st);
   }
   return st;
 }
@@ -237,15 +242,7 @@ ExchangeStats Exchange::bound_reaction(const ExchangeParticles& p, const flow::F
       ++st.clipped_faces;
       any = true;
     }
-    if (!any) continue;
-    for (std::size_t i = 0; i < n; ++i) {
-      if (subcycle_impulse[i][c] == 0.0) continue;
-      const Row r = W[c][i];
-      double back = 0.0;  // N s: particle i's part of what its faces gave up
-      for (std::size_t e = 0; e < r.face.size(); ++e) back -= given_up[r.face[e]] * r.w[e] * subcycle_impulse[i][c];
-      returned[i][c] = back;
-      st.clipped += std::abs(back);
-    }
+    if (any) hand_back(c, W[c], given_up, subcycle_impulse, returned, st);
   }
   return st;
 }

@@ -169,6 +169,11 @@ class Exchange {
     }
   };
   using Rows = std::array<RowTable, 3>;
+  // Component c of each particle's share of what its faces gave up (given_up: per face, the fraction of its
+  // reaction -W^T J it did not keep), N s, into returned; |returned| summed into st.clipped.
+  static void hand_back(int c, const RowTable& W, const std::vector<double>& given_up,
+                        const std::vector<std::array<double, 3>>& subcycle_impulse,
+                        std::vector<std::array<double, 3>>& returned, ExchangeStats& st);
   Rows rows(const ExchangeParticles& p, const flow::Faces& face_mass, const flow::Faces* paste_mask,
             std::vector<double>* share = nullptr) const;
   // Stage 1 (yield, against the frozen u) and stage 2 for one component (implicit drag); both update v, u and

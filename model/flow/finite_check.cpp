@@ -25,8 +25,7 @@ void require_finite_cells(const Grid& g, const std::vector<double>& v, const cha
                           bool positive) {
   for (long c = 0; c < static_cast<long>(v.size()); ++c) {
     if (!bad(v[c], positive)) continue;
-    const int i = static_cast<int>(c % g.n[0]), j = static_cast<int>((c / g.n[0]) % g.n[1]);
-    const int k = static_cast<int>(c / (static_cast<long>(g.n[0]) * g.n[1]));
+    const auto [i, j, k] = g.cell_at(c);
     fail(what, v[c], fmt::format("cell ({}, {}, {})", i, j, k), at);
   }
 }

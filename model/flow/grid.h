@@ -38,6 +38,9 @@ struct Grid {
   double cell_volume() const { return h[0] * h[1] * h[2]; }
   long cell(int i, int j, int k) const { return i + static_cast<long>(n[0]) * (j + static_cast<long>(n[1]) * k); }
   long cell(const std::array<int, 3>& q) const { return cell(q[0], q[1], q[2]); }
+  std::array<int, 3> cell_at(long c) const {  // the inverse of cell()
+    return {static_cast<int>(c % n[0]), static_cast<int>((c / n[0]) % n[1]), static_cast<int>(c / (static_cast<long>(n[0]) * n[1]))};
+  }
 
   // Faces of component c per axis.
   std::array<int, 3> face_dims(int c) const {

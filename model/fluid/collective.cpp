@@ -71,25 +71,23 @@ void strip_lengths(const double* cx, const double* cy, const double* r, std::siz
     if (r[k] > 0.0) by_x.push_back(static_cast<std::uint32_t>(k));
   std::sort(by_x.begin(), by_x.end(), [&](std::uint32_t a, std::uint32_t b) { return cx[a] < cx[b]; });
   const long blocks = (row1 - row0 + kRowBlock - 1) / kRowBlock;
-  auto rows_of = [&](std::size_t k, long& lo, long& hi) {  // the disc's strips, within [row0, row1)
-    lo = std::max(row0, static_cast<long>(std::floor((cy[k] - r[k] - y_lo) / step)));
-    hi = std::min(row1 - 1, static_cast<long>(std::floor((cy[k] + r[k] - y_lo) / step)));
+  // Each disc's strips within [row0, row1), computed once: [lo[k], hi[k]] (empty where lo > hi).
+  std::vector<long> lo(n, 0), hi(n, -1);
+  for (std::uint32_t k : by_x) {
+    lo[k] = std::max(row0, static_cast<long>(std::floor((cy[k] - r[k] - y_lo) / step)));
+    hi[k] = std::min(row1 - 1, static_cast<long>(std::floor((cy[k] + r[k] - y_lo) / step)));
+  }
+  auto for_blocks = [&](std::uint32_t k, auto&& f) {  // f(b) for each block of strips disc k reaches
+    if (lo[k] <= hi[k])
+      for (long b = (lo[k] - row0) / kRowBlock; b <= (hi[k] - row0) / kRowBlock; ++b) f(static_cast<std::size_t>(b));
   };
   std::vector<std::size_t> first(static_cast<std::size_t>(blocks) + 1, 0);
-  for (std::uint32_t k : by_x) {
-    long lo = 0, hi = 0;
-    rows_of(k, lo, hi);
-    for (long b = (lo - row0) / kRowBlock; lo <= hi && b <= (hi - row0) / kRowBlock; ++b) ++first[static_cast<std::size_t>(b) + 1];
-  }
+  for (std::uint32_t k : by_x) for_blocks(k, [&](std::size_t b) { ++first[b + 1]; });
   for (long b = 0; b < blocks; ++b) first[static_cast<std::size_t>(b) + 1] += first[static_cast<std::size_t>(b)];
   std::vector<std::uint32_t> in_block(first.back());
   {
     std::vector<std::size_t> fill(first.begin(), first.end() - 1);
-    for (std::uint32_t k : by_x) {
-      long lo = 0, hi = 0;
-      rows_of(k, lo, hi);
-      for (long b = (lo - row0) / kRowBlock; lo <= hi && b <= (hi - row0) / kRowBlock; ++b) in_block[fill[static_cast<std::size_t>(b)]++] = k;
-    }
+    for (std::uint32_t k : by_x) for_blocks(k, [&](std::size_t b) { in_block[fill[b]++] = k; });
   }
   std::array<std::vector<std::pair<double, double>>, kRowBlock> iv;
   double ya = 0.0, yb = 0.0;
@@ -98,12 +96,10 @@ void strip_lengths(const double* cx, const double* cy, const double* r, std::siz
     for (auto& v : iv) v.clear();
     for (std::size_t e = first[static_cast<std::size_t>(b)]; e < first[static_cast<std::size_t>(b) + 1]; ++e) {
       const std::uint32_t k = in_block[e];
-      long lo = 0, hi = 0;
-      rows_of(k, lo, hi);
       // Half the mean chord over each strip the disc crosses. Neighbouring strips share a boundary (the same
       // expression of the same row number, so the same double): its primitive is evaluated once.
       double at = NAN, prim = 0.0;
-      for (long row = std::max(lo, b0); row <= std::min(hi, b1 - 1); ++row) {
+      for (long row = std::max(lo[k], b0); row <= std::min(hi[k], b1 - 1); ++row) {
         if (!extent(k, row, ya, yb)) continue;
         const double below = ya == at ? prim : primitive(ya, r[k]);
         prim = primitive(yb, r[k]), at = yb;
