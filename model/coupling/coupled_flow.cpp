@@ -224,13 +224,17 @@ void book(CycleStats& st, const flow::Faces& before, const flow::Faces& u, const
   }
 }
 
-// Momentum `back` (N s per particle) handed back to the particles, and booked as theirs.
-void give_back(CycleStats& st, CoupledParticles& p, const std::vector<std::array<double, 3>>& back) {
+// Momentum `back` (N s per particle) handed back to the particles' velocities.
+void kick_back(CoupledParticles& p, const std::vector<std::array<double, 3>>& back) {
   for (std::size_t i = 0; i < p.size(); ++i)
-    for (int c = 0; c < 3; ++c) {
-      p.v[i][c] += back[i][c] / p.m[i];
-      st.particle_exchange[c] += back[i][c], st.exchange_scale += std::abs(back[i][c]);
-    }
+    for (int c = 0; c < 3; ++c) p.v[i][c] += back[i][c] / p.m[i];
+}
+
+// The same, booked as the particles' (the faces' side was booked where they gave it up).
+void give_back(CycleStats& st, CoupledParticles& p, const std::vector<std::array<double, 3>>& back) {
+  kick_back(p, back);
+  for (std::size_t i = 0; i < p.size(); ++i)
+    for (int c = 0; c < 3; ++c) st.particle_exchange[c] += back[i][c], st.exchange_scale += std::abs(back[i][c]);
 }
 }  // namespace
 
@@ -259,8 +263,7 @@ void CoupledFlow::bound_subcycle(const ExchangeParticles& at_start, const Start&
   if (e.clipped_faces == 0) return;
   // The books: the faces gave up what the particles got back (u changed here, outside the hooks' own).
   book(st, entry, u, mass, back);
-  for (std::size_t i = 0; i < p.size(); ++i)
-    for (int c = 0; c < 3; ++c) p.v[i][c] += back[i][c] / p.m[i];
+  kick_back(p, back);
 }
 
 // The flow over the interval T, eps_f linear in time between the start and the end positions; the exchange's
