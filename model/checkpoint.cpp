@@ -98,6 +98,7 @@ struct CheckpointAccess {
   // rebuild, for this run's thread count (the engine's bits do not depend on the partition).
   static void after_restore(World& w) {
     w.pairs_.threads = 0;
+    w.pairs_.find_uniform_law();  // not stored: from the restored law entries
     w.partition(w.threads_for(static_cast<long>(w.p_.size())), w.x_at_rebuild_);
     w.bad_index_ = -1;
     if (auto& field = std::get<FluidForces>(w.forces_).field) field->restored(w.p_);

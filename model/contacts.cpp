@@ -30,6 +30,10 @@ void batch_chunk(const std::vector<typename Law::Params>& table, const std::vect
                  const StepContext& ctx, Particles& p, PairList& L, const std::uint32_t* idx, const Vec3* sep,
                  const double* sep2, const double* rsums, long m, int me, int cur) {
   typename Law::Batch B;
+  // One law for every pair (one material, the common case): its parameters in every lane, once.
+  const std::uint32_t law0 = L.uniform_law;
+  if (law0 != PairList::kNone)
+    for (int e = 0; e < Law::kBatch; ++e) Law::load_params(B, e, table[law0]);
   for (long q0 = 0; q0 < m; q0 += Law::kBatch) {
     const int nb = static_cast<int>(std::min<long>(Law::kBatch, m - q0));
     for (int e = 0; e < nb; ++e) {
@@ -41,7 +45,7 @@ void batch_chunk(const std::vector<typename Law::Params>& table, const std::vect
       B.rsum[e] = rsums[q];
       B.ra[e] = p.radius[a], B.rb[e] = p.radius[b];
       B.r_star[e] = L.r_star[k], B.m_star[e] = L.m_star[k];
-      Law::load_params(B, e, table[L.law_index[k]]);
+      if (law0 == PairList::kNone) Law::load_params(B, e, table[L.law_index[k]]);
       const bool cross_pair = Part && L.cross[k] != PairList::kNone;
       Vec3 va, vb, wa, wb;
       const double* h;
@@ -69,17 +73,16 @@ void batch_chunk(const std::vector<typename Law::Params>& table, const std::vect
       if (h) h[0] = B.hx[e], h[1] = B.hy[e], h[2] = B.hz[e];
       const Vec3 force{B.fx[e], B.fy[e], B.fz[e]}, nxt{B.tx[e], B.ty[e], B.tz[e]};
       const double arm_a = B.arm_a[e], arm_b = B.arm_b[e];
+      const auto& rp = rolling[law0 != PairList::kNone ? law0 : L.law_index[k]];
       if (own_a) {
         p.f[a] += force;
         p.torque[a] += nxt * arm_a;
-        if constexpr (Roll::kick_friction)
-          p.rolling_capacity[a] += Roll::capacity(rolling[L.law_index[k]], B.fn[e], arm_a, B.r_star[e]);
+        if constexpr (Roll::kick_friction) p.rolling_capacity[a] += Roll::capacity(rp, B.fn[e], arm_a, B.r_star[e]);
       }
       if (own_b) {
         p.f[b] -= force;
         p.torque[b] += nxt * arm_b;
-        if constexpr (Roll::kick_friction)
-          p.rolling_capacity[b] += Roll::capacity(rolling[L.law_index[k]], B.fn[e], arm_b, B.r_star[e]);
+        if constexpr (Roll::kick_friction) p.rolling_capacity[b] += Roll::capacity(rp, B.fn[e], arm_b, B.r_star[e]);
       }
     }
   }
@@ -351,13 +354,16 @@ void PairList::rebuild(CandidatePairs& c, const Particles& p, int n_materials, i
   // keeps its pairs (lower, higher), negating the springs of a swapped pair).
   const bool carry = !start.empty() && width > 0;
   const long nn = static_cast<long>(n);
-#pragma omp parallel for schedule(static) num_threads(loop_threads)
+  std::uint32_t law_lo = kNone, law_hi = 0;
+#pragma omp parallel for schedule(static) num_threads(loop_threads) reduction(min : law_lo) reduction(max : law_hi)
   for (long k = 0; k < nn; ++k) {
     const std::uint32_t a = c.i[k], b = c.j[k];
     r_star[k] = p.radius[a] * p.radius[b] / (p.radius[a] + p.radius[b]);
     m_star[k] = p.mass[a] * p.mass[b] / (p.mass[a] + p.mass[b]);
     rsum[k] = p.radius[a] + p.radius[b];
     law_index[k] = static_cast<std::uint32_t>(p.material[a] * n_materials + p.material[b]);
+    law_lo = std::min(law_lo, law_index[k]);
+    law_hi = std::max(law_hi, law_index[k]);
     if (!carry) continue;
     for (std::uint32_t e = start[a]; e < start[a + 1]; ++e) {
       const std::uint32_t old = entry[e];
@@ -370,12 +376,19 @@ void PairList::rebuild(CandidatePairs& c, const Particles& p, int n_materials, i
       break;
     }
   }
+  uniform_law = n > 0 && law_lo == law_hi ? law_lo : kNone;
   i.swap(c.i);
   j.swap(c.j);
   history.swap(new_hist);
   touching.swap(new_touch);
   threads = 0;  // partition() again
   index_by_first(p.size());
+}
+
+void PairList::find_uniform_law() {
+  uniform_law = law_index.empty() ? kNone : law_index[0];
+  for (std::uint32_t e : law_index)
+    if (e != uniform_law) uniform_law = kNone;
 }
 
 // CSR by first particle (the carry-over at the next rebuild looks up (a, b) among the pairs with i = a):

@@ -41,6 +41,10 @@ struct PairList {
   // were the filter).
   std::vector<double> rsum;
   std::vector<std::uint32_t> law_index;  // material[i] * n_materials + material[j]: the law table entry
+  // The law table entry of every pair when they all share one (set by rebuild(); 0xffffffff: unknown or
+  // several): the batch kernel's parameters are then loaded once per batch, not per contact.
+  std::uint32_t uniform_law = 0xffffffffu;
+  void find_uniform_law();  // sets uniform_law from law_index
   std::vector<double> history;         // width per pair
   std::vector<std::uint32_t> touching;  // 0/1; not uint8: a char store may alias anything and forces reloads
   // CSR by first particle: the pairs with i = p are entry[start[p] .. start[p+1]), ascending (the history
@@ -144,6 +148,22 @@ struct WallState {
   void update(const std::vector<Wall>& walls, double t);
 };
 
+// Particle a against its wall candidate c: the distance from its centre to the wall's surface (m), the unit
+// vector towards the wall and the overlap (m); sets the candidate's touching flag, and a candidate that does
+// not touch forgets its spring (a new contact starts from zero). Both wall passes below.
+inline bool touch_wall(const std::vector<Wall>& walls, const WallState& ws, const Particles& p, WallContacts& wc,
+                       std::size_t a, std::uint32_t c, Vec3& n_to_wall, double& dist, double& overlap) {
+  const int k = wc.near[c];
+  dist = !ws.active[k] ? 1e300
+         : ws.rect[k]  ? rectangle_distance(walls[k], ws.origin[k], p.x[a], &n_to_wall)
+                       : wall_distance(walls[k], ws.shift[k], p.x[a], &n_to_wall);
+  overlap = p.radius[a] - dist;
+  const bool touch = !(overlap <= 0.0);  // NaN: touching, as before (the force then shows it)
+  if (!touch && wc.touching[c]) std::fill_n(wc.history.data() + c * static_cast<std::size_t>(wc.width), wc.width, 0.0);
+  wc.touching[c] = touch;
+  return touch;
+}
+
 // Wall forces of particle a added to f / t / roll, its candidate walls in wall order. Inline: the World
 // calls it inside its fused per-particle pass (forces, then the kick), one loop over the particles.
 template <class Law, class Roll>
@@ -158,16 +178,8 @@ inline void wall_forces_one(const std::vector<typename Law::Params>& table,
     const std::size_t slot = c;
     double* hist = w ? &wc.history[slot * static_cast<std::size_t>(w)] : nullptr;
     Vec3 n_to_wall;
-    const double dist = !ws.active[k] ? 1e300
-                        : ws.rect[k]  ? rectangle_distance(walls[k], ws.origin[k], p.x[a], &n_to_wall)
-                                      : wall_distance(walls[k], ws.shift[k], p.x[a], &n_to_wall);
-    const double overlap = p.radius[a] - dist;
-    if (overlap <= 0.0) {
-      if (wc.touching[slot]) std::fill(hist, hist + w, 0.0);
-      wc.touching[slot] = 0;
-      continue;
-    }
-    wc.touching[slot] = 1;
+    double dist, overlap;
+    if (!touch_wall(walls, ws, p, wc, a, c, n_to_wall, dist, overlap)) continue;
     typename Law::Geometry g;
     g.n = n_to_wall;
     g.overlap = overlap;
@@ -193,6 +205,62 @@ inline void wall_forces_one(const std::vector<typename Law::Params>& table,
       if constexpr (Roll::kick_friction) roll += Roll::capacity(rolling[pair], r.normal_force, arm, g.R_star);
     }
   }
+}
+
+// wall_forces_one of particles idx[0 .. m) in turn, for a law with a wall batch kernel (Law::WallBatch,
+// width = its history size, rotation on, no rolling spring): each touching (particle, wall) candidate is
+// staged, in particle and then wall order, with the geometry wall_forces_one computes; Law::wall_force_batch
+// computes kBatch of them at a time (several per instruction); the results are added in the same order,
+// with the same expressions: the same bits as wall_forces_one per particle.
+template <class Law, class Roll>
+inline void wall_forces_block(const std::vector<typename Law::Params>& table,
+                              const std::vector<typename Roll::Params>& rolling, const StepContext& ctx,
+                              const std::vector<Wall>& walls, const WallState& ws, Particles& p, WallContacts& wc,
+                              const long* idx, int m) {
+  static_assert(Roll::history_size == 0, "a rolling spring needs wall_forces_one");
+  typename Law::WallBatch B;
+  std::uint32_t slot[Law::kBatch];
+  std::uint32_t who[Law::kBatch];
+  double arm[Law::kBatch];
+  std::size_t pair[Law::kBatch];
+  int nb = 0;
+  auto flush = [&] {
+    Law::wall_force_batch(B, nb, ctx.dt);
+    for (int e = 0; e < nb; ++e) {
+      const std::size_t a = who[e];
+      double* hist = &wc.history[slot[e] * static_cast<std::size_t>(Law::history_size)];
+      hist[0] = B.hx[e], hist[1] = B.hy[e], hist[2] = B.hz[e];
+      const Vec3 n{B.nx[e], B.ny[e], B.nz[e]}, ft{B.tx[e], B.ty[e], B.tz[e]};
+      p.f[a] += Vec3{B.fx[e], B.fy[e], B.fz[e]};
+      const Vec3 moment;  // +0: no moment law (the sum's bits as wall_forces_one's)
+      p.torque[a] += cross(n * arm[e], ft) + moment;
+      if constexpr (Roll::kick_friction)
+        p.rolling_capacity[a] += Roll::capacity(rolling[pair[e]], B.fn[e], arm[e], B.r_star[e]);
+    }
+    nb = 0;
+  };
+  for (int q = 0; q < m; ++q) {
+    const std::size_t a = static_cast<std::size_t>(idx[q]);
+    for (std::uint32_t c = wc.start[a]; c < wc.start[a + 1]; ++c) {
+      const int k = wc.near[c];
+      Vec3 n_to_wall;
+      double dist, overlap;
+      if (!touch_wall(walls, ws, p, wc, a, c, n_to_wall, dist, overlap)) continue;
+      const double r_arm = std::max(dist, 0.0);
+      Vec3 v_rel = ws.vel[k] - p.v[a];
+      v_rel -= cross(p.omega[a], n_to_wall * r_arm);
+      const double* h = &wc.history[c * static_cast<std::size_t>(Law::history_size)];
+      B.nx[nb] = n_to_wall.x, B.ny[nb] = n_to_wall.y, B.nz[nb] = n_to_wall.z;
+      B.overlap[nb] = overlap, B.r_star[nb] = p.radius[a], B.m_star[nb] = p.mass[a];
+      B.vx[nb] = v_rel.x, B.vy[nb] = v_rel.y, B.vz[nb] = v_rel.z;
+      B.hx[nb] = h[0], B.hy[nb] = h[1], B.hz[nb] = h[2];
+      pair[nb] = static_cast<std::size_t>(p.material[a] * ctx.n_materials + walls[k].material);
+      Law::load_params(B, nb, table[pair[nb]]);
+      slot[nb] = c, who[nb] = static_cast<std::uint32_t>(a), arm[nb] = r_arm;
+      if (++nb == Law::kBatch) flush();
+    }
+  }
+  if (nb > 0) flush();
 }
 
 }  // namespace pastemix::model

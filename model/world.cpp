@@ -298,6 +298,21 @@ void spin_block(SpinBlock& b, int m) {
 // The force passes' kinds of addition (those run per particle after its pair sum, before its kick).
 constexpr auto kForceAdds = adds::force | adds::torque | adds::rolling_capacity;
 
+// The force passes of particles idx[0 .. m), pass by pass in list order (a pass with add_block() batches its
+// block; otherwise add() per particle). A pass's addition reads and writes only its particle.
+template <class Law, class Roll>
+void World::add_force_passes(const PassStep<Law, Roll>& s, const long* idx, int m) {
+  for_each_pass(forces_, [&](auto& pass) {
+    if constexpr ((std::decay_t<decltype(pass)>::info.adds & kForceAdds) != 0)
+      if (pass.active()) {
+        if constexpr (requires { pass.add_block(s, idx, m); })
+          pass.add_block(s, idx, m);
+        else
+          for (int e = 0; e < m; ++e) pass.add(s, idx[e]);
+      }
+  });
+}
+
 // The force passes, then close_kick(Then::kick_drift), of every particle of the lane, with rotation and the
 // rolling friction on, kKickBlock particles at a time: the velocities kicked as kick_twice does (a kick pass's
 // particle by the pass), the block's spins by spin_block (spin_twice), then the spins stored, the drifts and the
@@ -309,15 +324,14 @@ void World::close_kicks_rolling(const PassStep<Law, Roll>& s, Lane& lane, double
   long idx[kKickBlock];
   for (long q = 0; q < lane.n_own;) {
     int m = 0;
-    for (; q < lane.n_own && m < kKickBlock; ++q) {
-      const long a = lane.particle(q);
-      // Its force passes (the walls) first, in list order, while its state is in cache: one pass over the
-      // particles instead of two (issue 19: the walls' own pass grew from 6.8 to 11.7 ns per particle-step from
-      // the 13k to the 207k pour, memory-bound). A pass's add(a) reads and writes only particle a: the same bits.
-      for_each_pass(forces_, [&](auto& pass) {
-        if constexpr ((std::decay_t<decltype(pass)>::info.adds & kForceAdds) != 0)
-          if (pass.active()) pass.add(s, a);
-      });
+    for (; q < lane.n_own && m < kKickBlock; ++q) idx[m++] = lane.particle(q);
+    // The block's force passes (the walls) first, in list order, while its state is in cache: one pass over
+    // the particles instead of two (issue 19: the walls' own pass grew from 6.8 to 11.7 ns per particle-step
+    // from the 13k to the 207k pour, memory-bound). A pass's add(a) reads and writes only particle a, so
+    // each particle gets its passes' additions in list order, as one particle at a time: the same bits.
+    add_force_passes(s, idx, m);
+    for (int e = 0; e < m; ++e) {
+      const long a = idx[e];
       // A particle a kick pass claims (the fluid's) gets its velocity from the pass, as kick_one twice gives
       // it, and its spin in the block like any other (before, its two scalar spin kicks, with their sqrt,
       // division and unpredictable branch, were ~40 % of the fluid's kick of a bed in air, issue 19).
@@ -330,10 +344,9 @@ void World::close_kicks_rolling(const PassStep<Law, Roll>& s, Lane& lane, double
       const Vec3 dw = p_.torque[a] * (h * p_.inv_inertia[a]);
       const Vec3& w = p_.omega[a];
       const double cap = p_.rolling_capacity[a];
-      b.wx[m] = w.x, b.wy[m] = w.y, b.wz[m] = w.z, b.dx[m] = dw.x, b.dy[m] = dw.y, b.dz[m] = dw.z;
-      b.stop[m] = h * cap * p_.inv_inertia[a];
-      b.cap[m] = cap;
-      idx[m++] = a;
+      b.wx[e] = w.x, b.wy[e] = w.y, b.wz[e] = w.z, b.dx[e] = dw.x, b.dy[e] = dw.y, b.dz[e] = dw.z;
+      b.stop[e] = h * cap * p_.inv_inertia[a];
+      b.cap[e] = cap;
     }
     spin_block(b, m);
     for (int e = 0; e < m; ++e) {
@@ -355,12 +368,21 @@ void World::step_lane(const PassStep<Law, Roll>& s, Lane& lane, Then then, doubl
   lane.time(Profile::contact_forces);
   // Every particle's kick in blocks, each particle's force passes just before its kick (close_kicks_rolling).
   const bool blocked = then == Then::kick_drift && lane.rot && lane.roll;
-  // Otherwise, per owned particle, after its pair sum: the force passes in list order (walls: in wall order).
+  // Otherwise, per owned particle, after its pair sum: the force passes in list order (walls: in wall order),
+  // kKickBlock particles at a time.
   if (!blocked)
     for_each_pass(forces_, [&](auto& pass) {
       if constexpr ((std::decay_t<decltype(pass)>::info.adds & kForceAdds) != 0)
         if (pass.active()) {
-          for (long q = 0; q < lane.n_own; ++q) pass.add(s, lane.particle(q));
+          long idx[kKickBlock];
+          for (long q = 0; q < lane.n_own;) {
+            int m = 0;
+            for (; q < lane.n_own && m < kKickBlock; ++q) idx[m++] = lane.particle(q);
+            if constexpr (requires { pass.add_block(s, idx, m); })
+              pass.add_block(s, idx, m);
+            else
+              for (int e = 0; e < m; ++e) pass.add(s, idx[e]);
+          }
           lane.time(pass.info.stage);
         }
     });

@@ -151,6 +151,8 @@ class World {
   // in blocks (a kick pass's particles' velocities by the pass).
   template <class Law, class Roll>
   void close_kicks_rolling(const PassStep<Law, Roll>& s, Lane& lane, double h);
+  template <class Law, class Roll>
+  void add_force_passes(const PassStep<Law, Roll>& s, const long* idx, int m);
   void publish_ghost(const Lane& lane, long a);
   // Whether the lists must be rebuilt at time t, the particles having moved sqrt(moved2) since the last.
   bool rebuild_due(double moved2, double t) const;

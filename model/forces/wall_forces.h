@@ -27,6 +27,19 @@ struct WallForces {
     state[static_cast<std::size_t>(s.thread)].update(s.walls, s.ctx.t);
   }
 
+  // add(s, a) of particles idx[0 .. m) in turn (the same bits), batched for a law with a wall batch kernel.
+  template <class Law, class Roll>
+  void add_block(const PassStep<Law, Roll>& s, const long* idx, int m) {
+    if constexpr (requires { typename Law::WallBatch; } && Roll::history_size == 0) {
+      if (s.wall_contacts.width == Law::history_size && s.p.has_rotation) {
+        wall_forces_block<Law, Roll>(s.laws, s.rolling, s.ctx, s.walls, state[static_cast<std::size_t>(s.thread)], s.p,
+                                     s.wall_contacts, idx, m);
+        return;
+      }
+    }
+    for (int e = 0; e < m; ++e) add(s, idx[e]);
+  }
+
   template <class Law, class Roll>
   void add(const PassStep<Law, Roll>& s, long a) {
     const WallContacts& wc = s.wall_contacts;

@@ -5,7 +5,12 @@
 #include <doctest/doctest.h>
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include "model/world.h"
+#include "base/rng.h"
+#include "model/laws/constant_torque.h"
+#include "model/laws/hertz_mindlin.h"
 #include "tests/model/scene_text.h"
 
 using namespace pastemix;
@@ -36,4 +41,136 @@ TEST_CASE("contacts: the tangential spring survives neighbour rebuilds (rebuild 
   CHECK(v_many.x == v_few.x);
   CHECK(v_many.y == v_few.y);
   CHECK(w_many.z == w_few.z);
+}
+
+namespace {
+
+// An open box 5 x 5 x 5 cm (floor and four sides, rock-like walls of material 1) and 300 spheres of
+// material 0, a third of them pressed into a wall, the rest near one or inside; random velocities and spins.
+struct WallScene {
+  std::vector<Wall> walls;
+  Particles p;
+  WallScene() {
+    auto rect = [&](Vec3 o, Vec3 u, Vec3 v) {
+      Wall w;
+      w.kind = WallKind::rectangle, w.material = 1, w.origin = o, w.u = u, w.v = v;
+      w.finish();
+      walls.push_back(w);
+    };
+    const double L = 0.05, h = 0.025;
+    rect({h, h, 0}, {h, 0, 0}, {0, h, 0});
+    rect({0, h, h}, {0, h, 0}, {0, 0, h});
+    rect({L, h, h}, {0, h, 0}, {0, 0, h});
+    rect({h, 0, h}, {h, 0, 0}, {0, 0, h});
+    rect({h, L, h}, {h, 0, 0}, {0, 0, h});
+    p.enable_rotation();
+    Rng rng(5);
+    for (int k = 0; k < 300; ++k) {
+      const double r = rng.uniform(1.2e-3, 2.5e-3);
+      // Distance to the nearest wall: overlapping (a third), within the skin, or farther.
+      const double gap = k % 3 == 0 ? -r * rng.uniform(1e-4, 0.02) : r * rng.uniform(0.0, 0.3);
+      Vec3 x{rng.uniform(r, L - r), rng.uniform(r, L - r), rng.uniform(r, L - r)};
+      const int side = k % 5;
+      if (side == 0) x.z = r + gap;
+      if (side == 1) x.x = r + gap;
+      if (side == 2) x.x = L - r - gap;
+      if (side == 3) x.y = r + gap;
+      if (side == 4) x.y = L - r - gap;
+      if (k % 7 == 0) x.z = r + gap;  // some in a corner (two walls)
+      p.add(0, r, 2760, x, {rng.normal(), rng.normal(), rng.normal()},
+            {100 * rng.normal(), 100 * rng.normal(), 100 * rng.normal()});
+      p.f.back() = {rng.normal(), rng.normal(), rng.normal()};  // a pair sum before the walls
+      p.torque.back() = {1e-3 * rng.normal(), 1e-3 * rng.normal(), 0};
+      p.rolling_capacity.back() = 1e-4 * rng.uniform(0, 1);
+    }
+  }
+};
+
+}  // namespace
+
+TEST_CASE("contacts: the batched wall pass gives the per-particle wall pass's bits (forces, springs, flags)") {
+  WallScene a, b;
+  Material rock{"rock", 2760, 4.68e7, 0.19}, steel{"steel", 7800, 2e11, 0.3};
+  std::vector<HertzMindlin::Params> laws;
+  std::vector<ConstantTorque::Params> rolling;
+  for (const Material* m0 : {&rock, &steel})
+    for (const Material* m1 : {&rock, &steel}) {
+      laws.push_back(HertzMindlin::from_pair({m0, m1, 0.79, 0.466, 0.15}));
+      rolling.push_back({0.15});
+    }
+  const StepContext ctx{0.0, 1e-5, 2};
+  WallContacts wa, wb;
+  wa.resize(a.p.size(), 5, 3);
+  wb.resize(b.p.size(), 5, 3);
+  WallState ws;
+  ws.update(a.walls, 0.0);
+  std::vector<long> idx(a.p.size());
+  for (std::size_t k = 0; k < idx.size(); ++k) idx[k] = static_cast<long>(k);
+  long touching = 0;
+  for (int step = 0; step < 3; ++step) {  // the springs of steps 1 and 2 start from those of the step before
+    wa.rebuild(a.walls, a.p, 0.0, 1e-3, 1);
+    wb.rebuild(b.walls, b.p, 0.0, 1e-3, 1);
+    for (std::size_t k = 0; k < a.p.size(); ++k) {
+      Vec3 f = a.p.f[k], t = a.p.torque[k];
+      double rc = a.p.rolling_capacity[k];
+      wall_forces_one<HertzMindlin, ConstantTorque>(laws, rolling, ctx, a.walls, ws, a.p, wa, k, f, t, rc);
+      a.p.f[k] = f, a.p.torque[k] = t, a.p.rolling_capacity[k] = rc;
+    }
+    // In blocks of 61 particles (not a multiple of the batch: some batches span two blocks' contacts).
+    for (std::size_t q = 0; q < idx.size(); q += 61)
+      wall_forces_block<HertzMindlin, ConstantTorque>(laws, rolling, ctx, b.walls, ws, b.p, wb, idx.data() + q,
+                                                      static_cast<int>(std::min<std::size_t>(61, idx.size() - q)));
+    for (std::size_t k = 0; k < a.p.size(); ++k) {
+      CAPTURE(k);
+      CHECK(a.p.f[k].x == b.p.f[k].x);
+      CHECK(a.p.f[k].y == b.p.f[k].y);
+      CHECK(a.p.f[k].z == b.p.f[k].z);
+      CHECK(a.p.torque[k].x == b.p.torque[k].x);
+      CHECK(a.p.torque[k].y == b.p.torque[k].y);
+      CHECK(a.p.torque[k].z == b.p.torque[k].z);
+      CHECK(a.p.rolling_capacity[k] == b.p.rolling_capacity[k]);
+    }
+    CHECK(wa.touching == wb.touching);
+    CHECK(wa.history == wb.history);
+    touching = std::count(wa.touching.begin(), wa.touching.end(), 1u);
+    // Move every sphere a little (some contacts open, some close, most keep their spring).
+    for (WallScene* s : {&a, &b})
+      for (std::size_t k = 0; k < s->p.size(); ++k) s->p.x[k] += s->p.v[k] * 2e-5;
+  }
+  MESSAGE(touching << " touching wall contacts of " << wa.near.size() << " candidates");
+  CHECK(touching > 50);
+  CHECK(static_cast<std::size_t>(touching) < wa.near.size());
+}
+
+TEST_CASE("contacts: the wall candidate lists do not depend on the thread count") {
+  WallScene s;
+  WallContacts w1, w3;
+  w1.resize(s.p.size(), 5, 3);
+  w3.resize(s.p.size(), 5, 3);
+  w1.rebuild(s.walls, s.p, 0.0, 1e-3, 1);
+  w3.rebuild(s.walls, s.p, 0.0, 1e-3, 3);
+  CHECK(w1.near.size() > 100);
+  CHECK(w1.start == w3.start);
+  CHECK(w1.near == w3.near);
+}
+
+TEST_CASE("contacts: one law for every pair is detected at the rebuild (its parameters then load once per batch)") {
+  Rng rng(3);
+  auto list = [&](int materials, bool mixed) {
+    Particles p;
+    for (int k = 0; k < 400; ++k)
+      p.add(mixed ? k % materials : materials - 1, 1e-3, 2760,
+            {rng.uniform(0, 0.02), rng.uniform(0, 0.02), rng.uniform(0, 0.02)}, {}, {});
+    CandidatePairs c = build_pairs(p.x, p.radius, 5e-4);
+    PairList L;
+    L.rebuild(c, p, materials, 2);
+    CHECK(L.size() > 100);
+    const std::uint32_t found = L.uniform_law;
+    L.find_uniform_law();  // as after a checkpoint's restore
+    CHECK(L.uniform_law == found);
+    return found;
+  };
+  CHECK(list(1, false) == 0u);
+  CHECK(list(2, false) == 3u);  // material 1 with 1: entry 1 * 2 + 1
+  CHECK(list(2, true) == PairList::kNone);
 }

@@ -251,3 +251,58 @@ TEST_CASE("oblique impact: F_t(delta_t) follows Mindlin S_t delta_t before slidi
   CHECK(compared > 50);
   CHECK(diff_max / ft_peak < 1e-3);
 }
+
+TEST_CASE("Hertz-Mindlin wall batch kernel: the same bits as force(), lane by lane (stick, slip, new contacts)") {
+  Material a{"a", 2760, 4.68e7, 0.19}, b{"b", 7800, 2e11, 0.3};
+  MaterialPair pab{&a, &b, 0.79, 0.466, 0.15}, paa{&a, &a, 0.5, 0.2, 0.0};
+  const HertzMindlin::Params prm[2] = {HertzMindlin::from_pair(pab), HertzMindlin::from_pair(paa)};
+  Rng rng(8);
+  HertzMindlin::WallBatch B;
+  const int m = 59;  // not a multiple of the vector width
+  const double dt = 1e-5;
+  std::vector<HertzMindlin::Geometry> geo;
+  std::vector<Vec3> springs;
+  for (int q = 0; q < m; ++q) {
+    HertzMindlin::Geometry g;
+    Vec3 dir{rng.normal(), rng.normal(), rng.normal()};
+    g.n = dir * (1.0 / norm(dir));
+    g.R_star = rng.uniform(1.25e-3, 2.5e-3);
+    g.overlap = g.R_star * rng.uniform(1e-5, 0.03);
+    g.m_star = 1e-4 * rng.uniform(0.5, 2.0);
+    g.v_rel = {rng.normal(), rng.normal(), rng.normal()};
+    g.dt = dt;
+    // No spring (a new contact), a small one (sticks), a large one (slips).
+    const double hs = q % 3 == 0 ? 0.0 : (q % 3 == 1 ? 1e-7 : 1e-3);
+    const Vec3 h{hs * rng.normal(), hs * rng.normal(), hs * rng.normal()};
+    geo.push_back(g);
+    springs.push_back(h);
+    B.nx[q] = g.n.x, B.ny[q] = g.n.y, B.nz[q] = g.n.z, B.overlap[q] = g.overlap;
+    B.r_star[q] = g.R_star, B.m_star[q] = g.m_star;
+    B.vx[q] = g.v_rel.x, B.vy[q] = g.v_rel.y, B.vz[q] = g.v_rel.z;
+    HertzMindlin::load_params(B, q, prm[q % 2]);
+    B.hx[q] = h.x, B.hy[q] = h.y, B.hz[q] = h.z;
+  }
+  HertzMindlin::wall_force_batch(B, m, dt);
+  int slips = 0;
+  for (int q = 0; q < m; ++q) {
+    const auto& g = geo[static_cast<std::size_t>(q)];
+    const Vec3& s = springs[static_cast<std::size_t>(q)];
+    double h[HertzMindlin::history_size] = {s.x, s.y, s.z};
+    const auto r = HertzMindlin::force(prm[q % 2], g, h, 3);
+    slips += norm(r.tangential_i) >= prm[q % 2].friction * r.normal_force * (1 - 1e-12);
+    CAPTURE(q);
+    CHECK(B.fx[q] == r.force_i.x);
+    CHECK(B.fy[q] == r.force_i.y);
+    CHECK(B.fz[q] == r.force_i.z);
+    CHECK(B.tx[q] == r.tangential_i.x);
+    CHECK(B.ty[q] == r.tangential_i.y);
+    CHECK(B.tz[q] == r.tangential_i.z);
+    CHECK(B.fn[q] == r.normal_force);
+    CHECK(B.hx[q] == h[0]);
+    CHECK(B.hy[q] == h[1]);
+    CHECK(B.hz[q] == h[2]);
+  }
+  MESSAGE(slips << " of " << m << " wall contacts slip");
+  CHECK(slips > 5);
+  CHECK(slips < m - 5);
+}
