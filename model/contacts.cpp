@@ -3,6 +3,7 @@
 
 
 #include <algorithm>
+#include <stdexcept>
 #include <variant>
 
 #include <omp.h>
@@ -43,7 +44,7 @@ void batch_chunk(const std::vector<typename Law::Params>& table, const std::vect
     const int nb = static_cast<int>(std::min<long>(Law::kBatch, m - q0));
     for (int e = 0; e < nb; ++e) {
       const long q = q0 + e;
-      const std::uint32_t k = idx[q];
+      const std::uint32_t k = idx[q] & ~PairList::kCrossBit;
       const std::uint32_t a = L.i[k], b = L.j[k];
       B.dx[e] = sep.x[q], B.dy[e] = sep.y[q], B.dz[e] = sep.z[q];
       B.dist2[e] = sep2[q];
@@ -51,7 +52,7 @@ void batch_chunk(const std::vector<typename Law::Params>& table, const std::vect
       B.ra[e] = p.radius[a], B.rb[e] = p.radius[b];
       B.r_star[e] = L.r_star[k], B.m_star[e] = L.m_star[k];
       if (law0 == PairList::kNone) Law::load_params(B, e, table[L.law_index[k]]);
-      const bool cross_pair = Part && L.cross[k] != PairList::kNone;
+      const bool cross_pair = Part && (idx[q] & PairList::kCrossBit) != 0;
       Vec3 va, vb, wa, wb;
       const double* h;
       if (cross_pair) {
@@ -68,11 +69,12 @@ void batch_chunk(const std::vector<typename Law::Params>& table, const std::vect
     }
     Law::force_batch(B, nb, ctx.dt);
     for (int e = 0; e < nb; ++e) {
-      const std::uint32_t k = idx[q0 + e];
+      const std::uint32_t k = idx[q0 + e] & ~PairList::kCrossBit;
       const std::uint32_t a = L.i[k], b = L.j[k];
-      const bool own_a = !Part || L.owner[a] == me;
-      const bool own_b = !Part || L.owner[b] == me;
-      const bool cross_pair = Part && L.cross[k] != PairList::kNone;
+      // A pair of this thread's list that does not cross has both particles here.
+      const bool cross_pair = Part && (idx[q0 + e] & PairList::kCrossBit) != 0;
+      const bool own_a = !cross_pair || L.owner[a] == me;
+      const bool own_b = !cross_pair || L.owner[b] == me;
       // The new spring: in place, or (a cross pair) into the next buffer by the owner of i only.
       double* h = cross_pair ? (own_a ? &L.cross_hist[cur ^ 1][L.cross[k] * 3] : nullptr) : &L.history[k * 3];
       if (h) h[0] = B.hx[e], h[1] = B.hy[e], h[2] = B.hz[e];
@@ -110,16 +112,17 @@ void pair_chunk(const std::vector<typename Law::Params>& table, const std::vecto
   double sep2[kChunk], rsums[kChunk];
   long m = 0;
   for (long q = q0; q < q1; ++q) {
-    const std::uint32_t k = Part ? ks[q] : static_cast<std::uint32_t>(q);
+    const std::uint32_t entry = Part ? ks[q] : static_cast<std::uint32_t>(q);
+    const std::uint32_t k = entry & ~PairList::kCrossBit;
     const std::uint32_t a = L.i[k], b = L.j[k];
     // A cross pair reads the other thread's particle from its ghost copy (that thread may already be
     // kicking and drifting the original).
-    const bool cross_pair = Part && L.cross[k] != PairList::kNone;
+    const bool cross_pair = Part && (entry & PairList::kCrossBit) != 0;
     const Vec3 d = cross_pair ? L.state(b, cur).x - L.state(a, cur).x : p.x[b] - p.x[a];
     const double rsum = L.rsum[k];
     const double dist2 = norm2(d);
     const bool touch = !(dist2 >= rsum * rsum);
-    idx[m] = k;
+    idx[m] = entry;
     sep.x[m] = d.x, sep.y[m] = d.y, sep.z[m] = d.z;
     sep2[m] = dist2;
     rsums[m] = rsum;
@@ -148,14 +151,14 @@ void pair_chunk(const std::vector<typename Law::Params>& table, const std::vecto
   }
   double scratch[kMaxHistory];
   for (long q = 0; q < m; ++q) {
-    const std::uint32_t k = idx[q];
+    const std::uint32_t k = idx[q] & ~PairList::kCrossBit;
     const std::uint32_t a = L.i[k], b = L.j[k];
-    const bool own_a = !Part || L.owner[a] == me;
-    const bool own_b = !Part || L.owner[b] == me;
+    const bool cross_pair = Part && (idx[q] & PairList::kCrossBit) != 0;
+    const bool own_a = !cross_pair || L.owner[a] == me;
+    const bool own_b = !cross_pair || L.owner[b] == me;
     const Vec3 d{sep.x[q], sep.y[q], sep.z[q]};
     const double rsum = rsums[q];
     double* hist = w ? &L.history[k * ws] : nullptr;
-    const bool cross_pair = Part && L.cross[k] != PairList::kNone;
     if (cross_pair && w) {
       const double* old = &L.cross_hist[cur][L.cross[k] * ws];
       hist = own_a ? &L.cross_hist[cur ^ 1][L.cross[k] * ws] : scratch;
@@ -445,7 +448,8 @@ void PairList::rename(const std::vector<std::uint32_t>& map, std::size_t np) {
   index_by_first(np);
 }
 
-void PairList::partition(int n_threads, const std::vector<Vec3>& x, const std::vector<double>* extra) {
+void PairList::partition(int n_threads, const std::vector<Vec3>& x, const std::vector<double>* extra,
+                         const std::vector<double>* share) {
   threads = n_threads;
   ++partitions;
   const std::size_t np = x.size(), n = size(), ws = static_cast<std::size_t>(width);
@@ -457,8 +461,10 @@ void PairList::partition(int n_threads, const std::vector<Vec3>& x, const std::v
   cross.assign(n, kNone);
   cross_pairs.clear();
   ghosts.clear();
+  work.clear();
   parity = 0;
   if (n_threads <= 1 || np == 0) return;
+  if (n >= kCrossBit) throw std::length_error("pair list too long for the threads' pair lists (2^31 pairs)");
   // Slabs across the longest side of the particles' bounding box, of about equal cost: the fewer pairs
   // cross a cut, the less work is done twice (settled bed, 2 threads: 2 % of the pairs cross a cut across
   // its 20 cm side, 14 % cross a cut between the halves of the index range).
@@ -495,21 +501,31 @@ void PairList::partition(int n_threads, const std::vector<Vec3>& x, const std::v
   std::vector<int> first(static_cast<std::size_t>(n_threads) + 1, kBins);
   first[0] = 0;
   double run = 0.0;
+  // Thread t's slab ends where the cumulated cost reaches total x (share[0] + ... + share[t]).
+  std::vector<double> upto(static_cast<std::size_t>(n_threads) + 1, 0.0);
+  for (int u = 0; u < n_threads; ++u)
+    upto[static_cast<std::size_t>(u) + 1] =
+        share && share->size() == static_cast<std::size_t>(n_threads)
+            ? upto[static_cast<std::size_t>(u)] + (*share)[static_cast<std::size_t>(u)]
+            : static_cast<double>(u + 1) / n_threads;
   int t = 1;
   for (int b = 0; b < kBins && t < n_threads; ++b) {
     run += bin[static_cast<std::size_t>(b)];
-    while (t < n_threads && run >= total * t / n_threads) first[static_cast<std::size_t>(t++)] = b + 1;
+    while (t < n_threads && run >= total * upto[static_cast<std::size_t>(t)]) first[static_cast<std::size_t>(t++)] = b + 1;
   }
+  work.assign(static_cast<std::size_t>(n_threads), 0.0);
   for (std::size_t a = 0; a < np; ++a) {
     const int o = static_cast<int>(std::upper_bound(first.begin(), first.end(), bin_of[a]) - first.begin()) - 1;
     owner[a] = static_cast<std::uint8_t>(std::clamp(o, 0, n_threads - 1));
     own[owner[a]].push_back(static_cast<std::uint32_t>(a));
+    work[owner[a]] += cost[a];
   }
   for (std::size_t k = 0; k < n; ++k) {
     const int oi = owner[i[k]], oj = owner[j[k]];
-    mine[static_cast<std::size_t>(oi)].push_back(static_cast<std::uint32_t>(k));
+    const auto entry = static_cast<std::uint32_t>(k) | (oj != oi ? kCrossBit : 0u);
+    mine[static_cast<std::size_t>(oi)].push_back(entry);
     if (oj != oi) {
-      mine[static_cast<std::size_t>(oj)].push_back(static_cast<std::uint32_t>(k));
+      mine[static_cast<std::size_t>(oj)].push_back(entry);
       cross[k] = static_cast<std::uint32_t>(cross_pairs.size());
       cross_pairs.push_back(static_cast<std::uint32_t>(k));
     }

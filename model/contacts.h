@@ -54,10 +54,14 @@ struct PairList {
   std::vector<std::uint32_t> spare_touch;
 
   // Partition for `threads` threads (0: none yet; rebuild() resets it): thread t owns the particles
-  // own[t] (ascending; owner[a] = t) and computes the pairs mine[t] (ascending). cross[k] indexes the pairs
+  // own[t] (ascending; owner[a] = t) and computes the pairs mine[t] (ascending; kCrossBit below). cross[k] indexes the pairs
   // across two threads' particles (kNone otherwise); their history lives in cross_hist[parity] while the
   // threads run and is copied back into `history` by sync_cross().
   static constexpr std::uint32_t kNone = 0xffffffffu;
+  // An entry of mine[t] is a pair index, with kCrossBit set for a cross pair: the pair pass then tells a
+  // cross pair, and needs the owners, only from its own list (issue 19: the loads of cross[k] and of both
+  // owners for every pair made a settled bed's pair pass ~35 % dearer at 2 threads than at 1).
+  static constexpr std::uint32_t kCrossBit = 0x80000000u;
   int threads = 0;
   long partitions = 0;  // partition() calls so far: a stamp that changes whenever the owners may have
   std::vector<std::uint8_t> owner;
@@ -84,10 +88,13 @@ struct PairList {
   // Replaces the pairs by `c`, carrying over the history of pairs present before (c gets the old arrays).
   // loop_threads: of its loop (model/parallel.h); the result does not depend on it.
   void rebuild(CandidatePairs& c, const Particles& p, int n_materials, int loop_threads);
-  // Splits the particles (positions x) into `threads` slabs of about equal cost (particles, pairs,
-  // touching pairs, and `extra` per particle where given: the force passes' own work, e.g. a fluid kick)
-  // across the longest side of their bounding box.
-  void partition(int threads, const std::vector<Vec3>& x, const std::vector<double>* extra = nullptr);
+  // Splits the particles (positions x) into `threads` slabs across the longest side of their bounding box,
+  // thread t's slab of about share[t] of the total cost (particles, pairs, touching pairs, and `extra` per
+  // particle where given: the force passes' own work, e.g. a fluid kick); equal shares without `share`.
+  // work[t]: the cost of thread t's slab (the units of the load balance, World::partition).
+  void partition(int threads, const std::vector<Vec3>& x, const std::vector<double>* extra = nullptr,
+                 const std::vector<double>* share = nullptr);
+  std::vector<double> work;
   // Copies the cross pairs' history back into `history` (the threads are done).
   void sync_cross();
   // Sets ghost[parity] from the particles (before the threads start).
