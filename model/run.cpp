@@ -153,6 +153,12 @@ RunSummary run_checked(const Scene& scene, const std::filesystem::path& out_dir,
   for (double m : world.particles().mass) r.total_mass += m;
   r.profile = world.profile();
   r.profile_table = format_profile(r.profile, r.steps, r.wall_seconds, world.particles().size());
+  // The load balance at the end: each thread's share of the partition's cost (World::update_shares).
+  if (world.thread_shares().size() > 1) {
+    r.profile_table += "  thread shares  ";
+    for (double s : world.thread_shares()) r.profile_table += fmt::format(" {:.3f}", s);
+    r.profile_table += "  (of the pair and particle work, by measured speed)\n";
+  }
   return r;
 }
 

@@ -65,6 +65,13 @@ struct Escape {
   Vec3 x, v;            // m, m/s: its position (just outside the domain) and half-step velocity then
 };
 
+// The load balance's step: each thread's speed is the cost of its slab (work, the partition's units) over
+// its busy time (s); the shares of the cost move halfway from `share` towards the speeds' shares, within
+// 0.5 .. 1.5 of an equal share (one slow stretch cannot starve a thread), summing to 1. Unchanged when no
+// time was measured.
+std::vector<double> balanced_shares(const std::vector<double>& share, const std::vector<double>& work,
+                                    const std::vector<double>& busy);
+
 class World {
  public:
   World(WorldConfig config, std::vector<Material> materials, LawTable laws, RollingTable rolling,
@@ -104,6 +111,11 @@ class World {
   void set_flow(std::shared_ptr<fluid::FlowCoupling> coupling) { std::get<FlowForces>(forces_).coupling = std::move(coupling); }
   const fluid::FlowCoupling* flow() const { return std::get<FlowForces>(forces_).coupling.get(); }
   const Profile& profile() const { return profile_; }
+  // The threads' shares of the partition's cost (empty before the first multi-thread partition). They
+  // follow the measured speed of each thread (a core shared with another process, or slower memory, gets
+  // less); fix_thread_shares() fixes them (tests: any shares give the same bits).
+  const std::vector<double>& thread_shares() const { return share_; }
+  void fix_thread_shares(std::vector<double> shares) { share_ = std::move(shares), balance_ = false; }
   // Particles removed at the domain boundary (on_exit = remove), in the order of removal, and their mass.
   const std::vector<Escape>& escaped() const { return escaped_; }
   double escaped_mass() const { return escaped_mass_; }  // kg
@@ -121,6 +133,8 @@ class World {
   void rebuild_neighbors();
   // pairs_.partition with the passes' own cost per particle (partition_cost(a), where a pass has one).
   void partition(int threads, const std::vector<Vec3>& x);
+  void update_shares(int threads);
+  bool imbalanced(int threads) const;
   std::vector<double> pass_cost_;
   // The spatial sort (WorldConfig::sort_every): the permutation old -> new of the cell order, then every
   // per-particle array and list moved through it (Particles::apply_map, PairList / WallContacts::rename,
@@ -184,6 +198,14 @@ class World {
     long bad = 0;
   };
   std::vector<ThreadResult> results_[2];
+  // The load balance of the threads (partition()): each thread's busy time (s, its steps' work without the
+  // waits at the step barriers) since the last partition, and each thread's share of the partition's cost.
+  struct alignas(64) Busy {
+    double s = 0.0;
+  };
+  std::vector<Busy> busy_;
+  std::vector<double> share_;
+  bool balance_ = true;  // adapt share_ to the measured speeds (false: fixed shares, fix_thread_shares)
   std::vector<Vec3> x_at_rebuild_;
   Profile profile_;
   double t_ = 0.0;

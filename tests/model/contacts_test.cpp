@@ -174,3 +174,23 @@ TEST_CASE("contacts: one law for every pair is detected at the rebuild (its para
   CHECK(list(2, false) == 3u);  // material 1 with 1: entry 1 * 2 + 1
   CHECK(list(2, true) == PairList::kNone);
 }
+
+TEST_CASE("contacts: the partition gives each thread its share of the cost") {
+  Rng rng(4);
+  Particles p;
+  for (int k = 0; k < 2000; ++k)
+    p.add(0, 1e-3, 2760, {rng.uniform(0, 0.1), rng.uniform(0, 0.03), rng.uniform(0, 0.02)}, {}, {});
+  CandidatePairs c = build_pairs(p.x, p.radius, 5e-4);
+  PairList L;
+  L.rebuild(c, p, 1, 1);
+  for (const std::vector<double>& share : {std::vector<double>{0.5, 0.5}, {0.2, 0.8}, {0.1, 0.3, 0.6}}) {
+    L.partition(static_cast<int>(share.size()), p.x, nullptr, &share);
+    double total = 0.0;
+    for (double w : L.work) total += w;
+    for (std::size_t t = 0; t < share.size(); ++t) {
+      CAPTURE(t);
+      CHECK(L.work[t] / total == doctest::Approx(share[t]).epsilon(0.02));
+      CHECK(!L.own[t].empty());
+    }
+  }
+}
