@@ -91,10 +91,14 @@ void FluidField::merged(List&& list, std::vector<std::size_t>& head, F&& f) cons
 
 void FluidField::rise(int par, Lane& scratch, std::vector<double>& surface) const {
   std::vector<double>& wet = scratch.sum;  // reused: no allocation per step
-  wet.assign(regions_.size(), 0.0);
   const auto p = static_cast<std::size_t>(par);
-  merged([p](const Lane& l) -> const std::vector<long>& { return l.members[p]; }, scratch.head,
-         [&](const Lane& l, std::size_t q) { wet[static_cast<std::size_t>(l.wet[p][q].region)] += l.wet[p][q].volume; });
+  if (lanes_.size() == 1) {
+    wet = lanes_[0].wet_sum[p];  // one lane: its members' sum is the ascending one (issue 19: ~3 % of a bed in air)
+  } else {
+    wet.assign(regions_.size(), 0.0);
+    merged([p](const Lane& l) -> const std::vector<long>& { return l.members[p]; }, scratch.head,
+           [&](const Lane& l, std::size_t q) { wet[static_cast<std::size_t>(l.wet[p][q].region)] += l.wet[p][q].volume; });
+  }
   for (std::size_t k = 0; k < regions_.size(); ++k)
     if (regions_[k].surface_rise) surface[k] = regions_[k].z_surface0 + wet[k] / regions_[k].area();
 }
@@ -148,14 +152,21 @@ void FluidField::update_part(const Particles& p, int thread, const std::vector<s
   if (listed) {
     for (std::size_t k = 0; k < lane.surface.size() && !lane.stale; ++k)
       if (lane.surface[k] - lane.surface_at_refresh[k] > 0.5 * margin_) lane.stale = true;
+    // The last members lose their flags, unless the candidates are those of the last step (no refresh
+    // since): then every last member is visited below and gets its flags anew.
+    const bool refreshing = lane.stale || !lane.visited;
     if (lane.stale) refresh(p, lane, own);
-    for (long a : lane.members[static_cast<std::size_t>(lane.par)])
-      region_of_[static_cast<std::size_t>(a)] = -1, v_sub_[static_cast<std::size_t>(a)] = 0.0;
+    if (refreshing)
+      for (long a : lane.members[static_cast<std::size_t>(lane.par)])
+        region_of_[static_cast<std::size_t>(a)] = -1, v_sub_[static_cast<std::size_t>(a)] = 0.0;
+    lane.visited = true;
   }
   lane.par ^= 1;
   std::vector<long>& members = lane.members[static_cast<std::size_t>(lane.par)];
   std::vector<Wet>& wet = lane.wet[static_cast<std::size_t>(lane.par)];
+  std::vector<double>& wet_sum = lane.wet_sum[static_cast<std::size_t>(lane.par)];
   members.clear(), wet.clear();
+  wet_sum.assign(regions_.size(), 0.0);
   auto visit = [&](std::size_t a) {
     const Vec3& x = p.x[a];
     for (std::size_t k = 0; k < regions_.size(); ++k) {
@@ -168,6 +179,7 @@ void FluidField::update_part(const Particles& p, int thread, const std::vector<s
       keep_sphere(p, a, static_cast<int>(k));
       members.push_back(static_cast<long>(a));
       wet.push_back({vs, static_cast<int>(k)});
+      wet_sum[k] += vs;
       return;  // the first region that holds the particle owns it
     }
     region_of_[a] = -1, v_sub_[a] = 0.0;

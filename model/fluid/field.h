@@ -228,8 +228,12 @@ class FluidField {
     std::vector<long> candidates;              // the thread's particles within the margin, ascending
     std::array<std::vector<long>, 2> members;  // ascending; [par]: those of the last update_part
     std::array<std::vector<Wet>, 2> wet;       // per member: its wetted volume and region
+    // Per region, the members' wetted volumes summed in the members' order while they were found (m3): with
+    // one lane, that is rise()'s ascending sum itself.
+    std::array<std::vector<double>, 2> wet_sum;
     int par = 0;
     bool stale = true, refreshed = false, pending = false, cluster_due = false;  // pending: rise not summed
+    bool visited = false;  // its candidates were visited since the lane was made (their flags are set)
     long since = 0;                            // steps since the last cluster update (since_clusters_)
     std::vector<double> surface, surface_at_refresh;  // m, the thread's copy (the same bits in every lane)
     std::vector<double> sum;                   // m3 per region, scratch of rise()
