@@ -210,52 +210,6 @@ TEST_CASE("determinism: 1 vs 2 threads bitwise identical, same seed identical, a
   CHECK((a.size() != d.size() || std::memcmp(a.data(), d.data(), a.size() * sizeof(Vec3)) != 0));
 }
 
-TEST_CASE("load balance: any thread shares give the same bits, and measured shares stay within bounds") {
-  auto run = [](int threads, std::vector<double> shares) {
-    omp_set_num_threads(threads);
-    std::string text = pile_scene("constant_torque", 1.0);
-    text.replace(text.find("z_max = 0.06\n"), 13, "z_max = 0.06\nvelocity = [0, 0, -1.5]\n");
-    Scene scene = model::test::scene_from(text);
-    scene.config.parallel_min_items = 0;  // force the parallel paths even for this small scene
-    World w = make_world(scene);
-    if (!shares.empty()) w.fix_thread_shares(shares);
-    for (long k = 0; k < 5000; k += 500) w.advance(500);
-    omp_set_num_threads(omp_get_num_procs());
-    if (threads > 1 && shares.empty()) {  // measured: a partition of the cost, none starved
-      double sum = 0.0;
-      for (double s : w.thread_shares()) {
-        CHECK(s >= 0.25 - 1e-12);
-        CHECK(s <= 0.75 + 1e-12);
-        sum += s;
-      }
-      CHECK(sum == doctest::Approx(1.0));
-    }
-    return w.particles().x;
-  };
-  const auto one = run(1, {}), skewed = run(2, {0.15, 0.85}), other = run(2, {0.7, 0.3}), measured = run(2, {});
-  REQUIRE(one.size() == skewed.size());
-  CHECK(std::memcmp(one.data(), skewed.data(), one.size() * sizeof(Vec3)) == 0);
-  CHECK(std::memcmp(one.data(), other.data(), one.size() * sizeof(Vec3)) == 0);
-  CHECK(std::memcmp(one.data(), measured.data(), one.size() * sizeof(Vec3)) == 0);
-}
-
-TEST_CASE("load balance: the shares move halfway towards the measured speeds, bounded, summing to 1") {
-  // Thread 1 took twice as long for the same cost: speeds 2:1, so 0.5 -> halfway to 2/3.
-  auto s = balanced_shares({0.5, 0.5}, {100.0, 100.0}, {1.0, 2.0});
-  CHECK(s[0] == doctest::Approx(0.5 * 0.5 + 0.5 * 2.0 / 3.0));
-  CHECK(s[0] + s[1] == doctest::Approx(1.0));
-  // Repeated on the same speeds: converges to the speeds' shares.
-  for (int k = 0; k < 40; ++k) s = balanced_shares(s, {200.0 * s[0], 200.0 * s[1]}, {200.0 * s[0] / 2.0, 200.0 * s[1]});
-  CHECK(s[0] == doctest::Approx(2.0 / 3.0).epsilon(1e-6));
-  // A thread that did no work in its time cannot be starved below half an equal share.
-  s = balanced_shares({0.75, 0.25}, {100.0, 100.0}, {1.0, 1e9});
-  CHECK(s[1] == doctest::Approx(0.25));
-  CHECK(s[0] == doctest::Approx(0.75));
-  // No time measured: unchanged.
-  s = balanced_shares({0.6, 0.4}, {1.0, 1.0}, {0.0, 0.0});
-  CHECK(s[0] == 0.6);
-}
-
 TEST_CASE("diagnostics: a particle leaving the domain and a blow-up stop the run with id, time and cause") {
   // No floor: the sphere falls out of the domain's bottom.
   const std::string fall = header(1e-4, 1.0, "[0, 0, -9.81]") + model::test::material("rock", 2760, 4.68e7, 0.19) +
