@@ -283,18 +283,26 @@ void spin_block(SpinBlock& b, int m) {
 // The force passes' kinds of addition (those run per particle after its pair sum, before its kick).
 constexpr auto kForceAdds = adds::force | adds::torque | adds::rolling_capacity;
 
-// The force passes of particles idx[0 .. m), pass by pass in list order (a pass with add_block() batches its
-// block; otherwise add() per particle). A pass's addition reads and writes only its particle.
+namespace {
+
+// One force pass on particles idx[0 .. m): batched where the pass has add_block(), else add() per particle.
+template <class Pass, class Step>
+void add_block_of(Pass& pass, const Step& s, const long* idx, int m) {
+  if constexpr (requires { pass.add_block(s, idx, m); })
+    pass.add_block(s, idx, m);
+  else
+    for (int e = 0; e < m; ++e) pass.add(s, idx[e]);
+}
+
+}  // namespace
+
+// The force passes of particles idx[0 .. m), pass by pass in list order. A pass's addition reads and writes
+// only its particle.
 template <class Law, class Roll>
 void World::add_force_passes(const PassStep<Law, Roll>& s, const long* idx, int m) {
   for_each_pass(forces_, [&](auto& pass) {
     if constexpr ((std::decay_t<decltype(pass)>::info.adds & kForceAdds) != 0)
-      if (pass.active()) {
-        if constexpr (requires { pass.add_block(s, idx, m); })
-          pass.add_block(s, idx, m);
-        else
-          for (int e = 0; e < m; ++e) pass.add(s, idx[e]);
-      }
+      if (pass.active()) add_block_of(pass, s, idx, m);
   });
 }
 
@@ -363,10 +371,7 @@ void World::step_lane(const PassStep<Law, Roll>& s, Lane& lane, Then then, doubl
           for (long q = 0; q < lane.n_own;) {
             int m = 0;
             for (; q < lane.n_own && m < kKickBlock; ++q) idx[m++] = lane.particle(q);
-            if constexpr (requires { pass.add_block(s, idx, m); })
-              pass.add_block(s, idx, m);
-            else
-              for (int e = 0; e < m; ++e) pass.add(s, idx[e]);
+            add_block_of(pass, s, idx, m);
           }
           lane.time(pass.info.stage);
         }
