@@ -43,10 +43,9 @@ class NeighborSearch {
     long dim[3] = {1, 1, 1};
     std::size_t count = 0;
     std::vector<std::uint32_t> start, sorted;
-    // Positions and radii in cell order: the search scans them contiguously (the same pairs in the same
-    // order as through `sorted`, fewer cache misses).
-    std::vector<Vec3> xs;
-    std::vector<double> rs;
+    // Positions (one array per axis) and radii in cell order: the search scans them contiguously (the same
+    // pairs in the same order as through `sorted`, fewer cache misses), several candidates per instruction.
+    std::vector<double> xs, ys, zs, rs;
     long clamp_cell(double v, int axis) const;
     std::size_t index(long cx, long cy, long cz) const {
       return static_cast<std::size_t>((cz * dim[1] + cy) * dim[0] + cx);
@@ -66,6 +65,24 @@ class NeighborSearch {
   std::vector<Chunk> chunks_;
   std::vector<std::size_t> offset_;
 };
+
+namespace detail {
+// Candidates s0 .. s1 of a level (positions xs, ys, zs, radii rs, particle ids `sorted`, in cell order)
+// against particle a at xa with radius + skin ra: every pair closer than ra + r_s is written as (min, max)
+// to pi[m], pj[m], ... in scan order; returns the new m. pi and pj need room for m + (s1 - s0) + 8
+// entries. The test is dx^2 + dy^2 + dz^2 < (ra + r_s)^2, operations in that order, in both versions:
+// scan_candidates is eight candidates per instruction where the engine is built for AVX-512, else the
+// scalar loop; both give the same pairs in the same order (tests/model/neighbor_test.cpp).
+std::size_t scan_candidates(const double* xs, const double* ys, const double* zs, const double* rs,
+                            const std::uint32_t* sorted, std::uint32_t s0, std::uint32_t s1, std::uint32_t a,
+                            const Vec3& xa, double ra, std::uint32_t* pi, std::uint32_t* pj, std::size_t m);
+std::size_t scan_candidates_scalar(const double* xs, const double* ys, const double* zs, const double* rs,
+                                   const std::uint32_t* sorted, std::uint32_t s0, std::uint32_t s1,
+                                   std::uint32_t a, const Vec3& xa, double ra, std::uint32_t* pi,
+                                   std::uint32_t* pj, std::size_t m);
+// Whether scan_candidates is the vector version.
+bool scan_is_vectorized();
+}  // namespace detail
 
 CandidatePairs build_pairs(const std::vector<Vec3>& x, const std::vector<double>& radius, double skin);
 // Reference O(N^2) search (tests and PASTEMIX_VALIDATE).

@@ -4,6 +4,8 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <utility>
 
 #include "base/rng.h"
@@ -66,4 +68,53 @@ TEST_CASE("neighbor: the list and its order do not depend on the thread count, n
       CHECK(reused.j == one.j);
     }
   }
+}
+
+TEST_CASE("neighbor: the candidate scan gives the scalar loop's pairs in its order, boundary distances too") {
+  // 40 candidates around a finder at the origin (so d is exact): random ones, and every fifth on the
+  // cut-off along x (d^2 == cut^2: not a pair) or a hair inside it. Every range s0 .. s1 of them (lengths
+  // 0-40: every vector tail), with the finder's index below, among and above the candidates' ids.
+  Rng rng(20261205);
+  const int n = 40;
+  std::vector<double> xs(n), ys(n), zs(n), rs(n);
+  std::vector<std::uint32_t> sorted(n);
+  const Vec3 xa{0.0, 0.0, 0.0};
+  const double ra = 1.2e-3;
+  for (int s = 0; s < n; ++s) {
+    rs[s] = rng.uniform(0.5e-3, 1.0e-3);
+    sorted[s] = static_cast<std::uint32_t>(100 + 3 * s);
+    if (s % 5 == 0) {
+      const double cut = ra + rs[s];
+      xs[s] = s % 10 == 0 ? cut : cut * (1.0 - 1e-12), ys[s] = 0.0, zs[s] = 0.0;
+    } else {
+      xs[s] = rng.uniform(-3e-3, 3e-3), ys[s] = rng.uniform(-3e-3, 3e-3), zs[s] = rng.uniform(-3e-3, 3e-3);
+    }
+  }
+  MESSAGE("candidate scan vectorized: ", detail::scan_is_vectorized());
+  int hits = 0;
+  for (std::uint32_t a : {7u, 150u, 1000u})
+    for (std::uint32_t s0 = 0; s0 <= n; ++s0)
+      for (std::uint32_t s1 = s0; s1 <= n; ++s1) {
+        std::vector<std::uint32_t> pi(2 * n + 16, 0), pj(2 * n + 16, 0), qi(2 * n + 16, 0), qj(2 * n + 16, 0);
+        // Both start after 3 pairs already in the buffers.
+        const std::size_t m = detail::scan_candidates(xs.data(), ys.data(), zs.data(), rs.data(), sorted.data(), s0,
+                                                      s1, a, xa, ra, pi.data(), pj.data(), 3);
+        const std::size_t ms = detail::scan_candidates_scalar(xs.data(), ys.data(), zs.data(), rs.data(),
+                                                              sorted.data(), s0, s1, a, xa, ra, qi.data(), qj.data(), 3);
+        REQUIRE(m == ms);
+        for (std::size_t k = 3; k < m; ++k) {
+          REQUIRE(pi[k] == qi[k]);
+          REQUIRE(pj[k] == qj[k]);
+          REQUIRE(pi[k] < pj[k]);
+          REQUIRE((pi[k] == a || pj[k] == a));
+        }
+        hits += static_cast<int>(m - 3);
+      }
+  CHECK(hits > 0);
+  // The finder against all 40: the candidates on the cut-off are out, those a hair inside are in.
+  std::vector<std::uint32_t> pi(n + 16), pj(n + 16);
+  const std::size_t m = detail::scan_candidates(xs.data(), ys.data(), zs.data(), rs.data(), sorted.data(), 0, n, 7,
+                                                xa, ra, pi.data(), pj.data(), 0);
+  const auto end = pj.begin() + static_cast<long>(m);
+  for (int s = 0; s < n; s += 5) CHECK((std::find(pj.begin(), end, sorted[s]) != end) == (s % 10 != 0));
 }
