@@ -129,7 +129,8 @@ struct WallContacts {
   void rename(const std::vector<std::uint32_t>& map, std::size_t np);
 
  private:
-  std::vector<char> cand_;  // rebuild(): per particle and wall, candidate or not
+  std::vector<char> cand_;            // rebuild(): per particle and wall, candidate or not
+  std::vector<std::uint32_t> count_;  // rebuild(): per particle, its candidate walls
   std::vector<std::uint32_t> spare_start_, spare_touch_;
   std::vector<std::uint16_t> spare_near_;
   std::vector<double> spare_hist_;
