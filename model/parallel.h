@@ -6,6 +6,12 @@
 // every loop writes outputs indexed by its own variable only.
 #pragma once
 
+#include <sched.h>
+
+#include <atomic>
+#include <chrono>
+#include <thread>
+
 #include <omp.h>
 
 namespace pastemix::model {
@@ -15,5 +21,42 @@ inline constexpr long kParallelMinItems = 512;
 
 // The threads for a loop over n items: one below min_items, else OpenMP's maximum.
 inline int threads_for(long n, long min_items) { return n >= min_items ? omp_get_max_threads() : 1; }
+
+// A barrier for the threads of one parallel region that waits by polling and yielding the core
+// (sched_yield) instead of sleeping: the way MPI ranks wait with mpi_yield_when_idle. On this project's
+// 2-vCPU VMs a thread that sleeps in an OpenMP barrier (OMP_WAIT_POLICY=passive) takes tens of us to wake,
+// at every step; a pure spin is as fast but starves another process sharing the core, while a yield hands
+// the core over whenever something else is runnable. After kSleepAfter of waiting it sleeps in short
+// naps, so a long wait (a thread descheduled for a while) does not burn a core.
+class YieldBarrier {
+ public:
+  YieldBarrier() = default;
+  // A copy or move (of the World that holds it, between runs: no thread is waiting) starts fresh.
+  YieldBarrier(const YieldBarrier&) {}
+  YieldBarrier& operator=(const YieldBarrier&) { return *this; }
+  // Every one of `threads` threads calls wait(); none returns before all have called it. Writes before
+  // wait() in any thread are visible after it in every thread (acquire/release on the counter and the
+  // generation).
+  void wait(int threads) {
+    const unsigned g = gen_.load(std::memory_order_acquire);
+    if (count_.fetch_add(1, std::memory_order_acq_rel) + 1 == threads) {
+      count_.store(0, std::memory_order_relaxed);
+      gen_.store(g + 1, std::memory_order_release);
+      return;
+    }
+    const auto start = std::chrono::steady_clock::now();
+    for (int k = 0; gen_.load(std::memory_order_acquire) == g; ++k) {
+      if ((k & 63) != 63 || std::chrono::steady_clock::now() - start < kSleepAfter)
+        sched_yield();
+      else
+        std::this_thread::sleep_for(std::chrono::microseconds(50));
+    }
+  }
+
+ private:
+  static constexpr std::chrono::milliseconds kSleepAfter{2};
+  alignas(64) std::atomic<int> count_{0};
+  alignas(64) std::atomic<unsigned> gen_{0};
+};
 
 }  // namespace pastemix::model

@@ -437,7 +437,7 @@ void World::run_lane(const std::vector<typename Law::Params>& laws,
     auto& slot = results_[done & 1];
     slot[static_cast<std::size_t>(lane.me)] = {lane.d2, lane.bad};
     busy += std::chrono::duration<double>(Clock::now() - since).count();
-#pragma omp barrier
+    step_barrier_.wait(omp_get_num_threads());
     since = Clock::now();
     lane.time(Profile::wait);
     d2_all = 0.0;

@@ -12,6 +12,7 @@
 #include "model/fluid/field.h"
 #include "model/forces/registry.h"
 #include "model/material.h"
+#include "model/parallel.h"
 #include "model/particles.h"
 #include "model/profile.h"
 #include "model/walls.h"
@@ -198,6 +199,7 @@ class World {
     long bad = 0;
   };
   std::vector<ThreadResult> results_[2];
+  YieldBarrier step_barrier_;  // run_lane's barrier between the steps of a batch
   // The load balance of the threads (partition()): each thread's busy time (s, its steps' work without the
   // waits at the step barriers) since the last partition, and each thread's share of the partition's cost.
   struct alignas(64) Busy {
