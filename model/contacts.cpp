@@ -264,7 +264,7 @@ void WallContacts::rebuild(const std::vector<Wall>& w, const Particles& p, doubl
     shift[k] = w[k].displacement(t);
     active[k] = w[k].active(t);
   }
-  // One region: candidate flags (per wall, a vector loop over the particles for the plane bound, then the
+  // One region: candidate flags (per wall, one loop over a block of particles for the plane bound, then the
   // exact distance where the bound does not rule the wall out), each particle's count, the CSR offsets (one
   // thread: a prefix sum), then per particle its row and the history carry-over from its old candidates (a
   // few entries). The new lists go into the spare buffers (capacity kept between rebuilds) and are swapped
@@ -290,21 +290,15 @@ void WallContacts::rebuild(const std::vector<Wall>& w, const Particles& p, doubl
       for (std::size_t k = 0; k < nw; ++k) {
         char* ck = cand + k;
         const long stride = static_cast<long>(nw);
-        if (!active[k]) {
-          for (long a = a0; a < a1; ++a) ck[a * stride] = 0;
-          continue;
-        }
         const Wall& wk = w[k];
-        const bool rect = wk.kind == WallKind::rectangle;
-        const Vec3 o = wk.origin + shift[k];
+        const bool on = active[k] != 0;
         // The bound only skips walls that are clearly out of reach (the margin absorbs its round-off).
         for (long a = a0; a < a1; ++a)
-          ck[a * stride] = wall_distance_bound(wk, shift[k], x[a]) < (radius[a] + skin) * (1.0 + 1e-9);
+          ck[a * stride] = on && wall_distance_bound(wk, shift[k], x[a]) < (radius[a] + skin) * (1.0 + 1e-9);
         for (long a = a0; a < a1; ++a) {
           if (!ck[a * stride]) continue;
           Vec3 unused;
-          const double d = rect ? rectangle_distance(wk, o, x[a], &unused) : wall_distance(wk, shift[k], x[a], &unused);
-          ck[a * stride] = d < radius[a] + skin;
+          ck[a * stride] = wall_distance(wk, shift[k], x[a], &unused) < radius[a] + skin;
         }
       }
       for (long a = a0; a < a1; ++a) {
