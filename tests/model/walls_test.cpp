@@ -4,6 +4,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <cstdint>
 
 using namespace pastemix::model;
 
@@ -47,4 +48,42 @@ TEST_CASE("walls: distances and normals of the primitives") {
   plate.remove_at = 0.5;
   CHECK(plate.active(0.4));
   CHECK_FALSE(plate.active(0.5));
+}
+
+// The wall-list rebuild skips a wall whose bound already exceeds r + skin, so the bound must never exceed
+// the exact distance (or a touching wall would be missed); and it must rule out the far ones it is for.
+TEST_CASE("walls: the distance bound never exceeds the exact distance, and rules far walls out") {
+  Wall cone;  // the thesis funnel's cone, shifted and moved as a scene may place it
+  cone.kind = WallKind::revolution;
+  cone.origin = {0.1, 0.025, 0.52};
+  cone.r0 = 0.02, cone.z0 = 0.0, cone.r1 = 0.095, cone.z1 = 0.12;
+  Wall tube = cone;
+  tube.r0 = 0.02, tube.z0 = -0.02, tube.r1 = 0.02, tube.z1 = 0.0;
+  Wall disk = cone;  // a plate: r from 0 to 3 cm at one height (z0 == z1), listed downwards
+  disk.r0 = 0.03, disk.z0 = -0.02, disk.r1 = 0.0, disk.z1 = -0.02;
+  Wall rect;
+  rect.kind = WallKind::rectangle;
+  rect.origin = {0.1, 0.08, 0.0};
+  rect.u = {0.1, 0, 0};
+  rect.v = {0, 0.0825, 0};
+  rect.finish();
+  const Vec3 shift{0.001, -0.002, 0.003};
+  std::uint64_t state = 12345;
+  auto uniform = [&](double lo, double hi) {  // a small LCG: the test's own, seeded
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return lo + (hi - lo) * static_cast<double>(state >> 11) / 9007199254740992.0;
+  };
+  int ruled_out = 0;
+  for (const Wall* w : {&cone, &tube, &disk, &rect})
+    for (int k = 0; k < 4000; ++k) {
+      const Vec3 p{uniform(-0.05, 0.25), uniform(-0.1, 0.2), uniform(-0.05, 0.75)};
+      Vec3 n;
+      const double exact = wall_distance(*w, shift, p, &n);
+      const double bound = wall_distance_bound(*w, shift, p);
+      REQUIRE(bound >= 0.0);
+      REQUIRE(bound <= exact * (1.0 + 1e-12));
+      ruled_out += bound > 0.01;
+    }
+  // Most random points of the tall domain are more than 1 cm above or below the funnel's 14 cm.
+  CHECK(ruled_out > 3 * 4000 / 2);
 }
