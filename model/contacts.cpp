@@ -256,6 +256,11 @@ void WallContacts::resize(std::size_t particles, int n_walls, int history_width)
 }
 
 void WallContacts::rebuild(const std::vector<Wall>& w, const Particles& p, double t, double skin, int threads) {
+  YieldBarrier barrier;
+  run_team(threads, barrier, [&](const Team& team) { rebuild(w, p, t, skin, team); });
+}
+
+void WallContacts::rebuild(const std::vector<Wall>& w, const Particles& p, double t, double skin, const Team& team) {
   const std::size_t n = p.size();
   const std::size_t nw = w.size();
   std::vector<Vec3> shift(nw);
@@ -264,28 +269,32 @@ void WallContacts::rebuild(const std::vector<Wall>& w, const Particles& p, doubl
     shift[k] = w[k].displacement(t);
     active[k] = w[k].active(t);
   }
-  // One region: candidate flags (per wall, one loop over a block of particles for the plane bound, then the
+  // One team, three syncs: candidate flags (per wall, one loop over a block of particles for the plane bound, then the
   // exact distance where the bound does not rule the wall out), each particle's count, the CSR offsets (one
   // thread: a prefix sum), then per particle its row and the history carry-over from its old candidates (a
   // few entries). The new lists go into the spare buffers (capacity kept between rebuilds) and are swapped
   // in. (Issue 19: with the flags one particle and wall at a time and the rows by push_back in one thread,
   // this rebuild took 0.38 ms of a 13k pour's ~1.7 ms, at any thread count.)
-  cand_.resize(n * nw);
-  count_.resize(n);
+  if (team.me == 0) {
+    cand_.resize(n * nw);
+    count_.resize(n);
+    spare_start_.resize(n + 1);
+  }
+  team.sync();
   const long nn = static_cast<long>(n);
   const std::size_t wd = static_cast<std::size_t>(width);
   std::vector<std::uint32_t>& new_start = spare_start_;
   std::vector<std::uint16_t>& new_near = spare_near_;
   std::vector<double>& new_hist = spare_hist_;
   std::vector<std::uint32_t>& new_touch = spare_touch_;
-  new_start.resize(n + 1);
   const Vec3* x = p.x.data();
   const double* radius = p.radius.data();
   char* cand = cand_.data();
-#pragma omp parallel num_threads(threads)
   {
-#pragma omp for schedule(static)
-    for (long a0 = 0; a0 < nn; a0 += kWallBlock) {
+    // This thread's blocks of kWallBlock particles (a contiguous range of them, as a static schedule).
+    long b0 = 0, b1 = 0;
+    team.range((nn + kWallBlock - 1) / kWallBlock, b0, b1);
+    for (long a0 = b0 * kWallBlock; a0 < std::min(nn, b1 * kWallBlock); a0 += kWallBlock) {
       const long a1 = std::min(nn, a0 + kWallBlock);
       for (std::size_t k = 0; k < nw; ++k) {
         char* ck = cand + k;
@@ -307,16 +316,18 @@ void WallContacts::rebuild(const std::vector<Wall>& w, const Particles& p, doubl
         count_[static_cast<std::size_t>(a)] = c;
       }
     }
-#pragma omp single
-    {
+    team.sync();
+    if (team.me == 0) {
       new_start[0] = 0;
       for (std::size_t a = 0; a < n; ++a) new_start[a + 1] = new_start[a] + count_[a];
       new_near.resize(new_start[n]);
       new_hist.assign(new_start[n] * wd, 0.0);
       new_touch.assign(new_start[n], 0);
     }
-#pragma omp for schedule(static)
-    for (long a = 0; a < nn; ++a) {
+    team.sync();
+    long r0 = 0, r1 = 0;
+    team.range(nn, r0, r1);
+    for (long a = r0; a < r1; ++a) {
       std::uint32_t e = new_start[a];
       for (std::size_t k = 0; k < nw; ++k)
         if (cand[static_cast<std::size_t>(a) * nw + k]) new_near[e++] = static_cast<std::uint16_t>(k);
@@ -331,6 +342,8 @@ void WallContacts::rebuild(const std::vector<Wall>& w, const Particles& p, doubl
         }
     }
   }
+  team.sync();
+  if (team.me != 0) return;  // the swaps in thread 0; the caller syncs before the lists are read
   start.swap(new_start);
   near.swap(new_near);
   history.swap(new_hist);
@@ -363,28 +376,37 @@ void WallContacts::rename(const std::vector<std::uint32_t>& map, std::size_t np)
 }
 
 void PairList::rebuild(CandidatePairs& c, const Particles& p, int n_materials, int loop_threads) {
+  YieldBarrier barrier;
+  run_team(loop_threads, barrier, [&](const Team& t) { rebuild(c, p, n_materials, t); });
+}
+
+void PairList::rebuild(CandidatePairs& c, const Particles& p, int n_materials, const Team& t) {
   const std::size_t n = c.i.size();
   // The new history and flags go into the spare buffers (their capacity kept between rebuilds).
   std::vector<double>& new_hist = spare_hist;
   std::vector<std::uint32_t>& new_touch = spare_touch;
-  // Sized here, filled (a carried spring or zeros) by the parallel loop: a serial zero-fill of the whole
+  // Sized here, filled (a carried spring or zeros) by the threads' loops: a serial zero-fill of the whole
   // history (~1 MB for a 13k pour) was then written again by both threads.
-  new_hist.resize(n * static_cast<std::size_t>(width));
-  new_touch.resize(n);
-  r_star.resize(n);
-  m_star.resize(n);
-  rsum.resize(n);
-  law_index.resize(n);
+  if (t.me == 0) {
+    new_hist.resize(n * static_cast<std::size_t>(width));
+    new_touch.resize(n);
+    r_star.resize(n);
+    m_star.resize(n);
+    rsum.resize(n);
+    law_index.resize(n);
+    law_range.assign(static_cast<std::size_t>(t.size), {kNone, 0});
+  }
+  t.sync();
   // History carry-over: a new pair (a, b) looks for (a, b) among the old pairs of a (its old CSR row, a
   // few entries). Only touching pairs carry a spring (a pair stops touching -> its history is zeroed).
   // Dense indices are the same in both lists (a removal or a spatial sort renames the old list first:
   // rename()), so (a, b) names the same two particles in both, and a < b in both (build_pairs; rename()
   // keeps its pairs (lower, higher), negating the springs of a swapped pair).
   const bool carry = !start.empty() && width > 0;
-  const long nn = static_cast<long>(n);
   std::uint32_t law_lo = kNone, law_hi = 0;
-#pragma omp parallel for schedule(static) num_threads(loop_threads) reduction(min : law_lo) reduction(max : law_hi)
-  for (long k = 0; k < nn; ++k) {
+  long k0 = 0, k1 = 0;
+  t.range(static_cast<long>(n), k0, k1);
+  for (long k = k0; k < k1; ++k) {
     const std::uint32_t a = c.i[k], b = c.j[k];
     r_star[k] = p.radius[a] * p.radius[b] / (p.radius[a] + p.radius[b]);
     m_star[k] = p.mass[a] * p.mass[b] / (p.mass[a] + p.mass[b]);
@@ -407,6 +429,10 @@ void PairList::rebuild(CandidatePairs& c, const Particles& p, int n_materials, i
     else
       std::fill_n(h, width, 0.0);
   }
+  law_range[static_cast<std::size_t>(t.me)] = {law_lo, law_hi};
+  t.sync();
+  if (t.me != 0) return;  // the rest in thread 0; the caller syncs before the list is read
+  for (const auto& [lo, hi] : law_range) law_lo = std::min(law_lo, lo), law_hi = std::max(law_hi, hi);
   uniform_law = n > 0 && law_lo == law_hi ? law_lo : kNone;
   i.swap(c.i);
   j.swap(c.j);

@@ -21,6 +21,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "model/laws/registry.h"
@@ -52,6 +53,7 @@ struct PairList {
   std::vector<std::uint32_t> start, entry;
   std::vector<double> spare_hist;          // rebuild() builds the new history here, then swaps
   std::vector<std::uint32_t> spare_touch;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> law_range;  // rebuild(): per thread, its lowest and highest law
 
   // Partition for `threads` threads (0: none yet; rebuild() resets it): thread t owns the particles
   // own[t] (ascending; owner[a] = t) and computes the pairs mine[t] (ascending; kCrossBit below). cross[k] indexes the pairs
@@ -88,6 +90,9 @@ struct PairList {
   // Replaces the pairs by `c`, carrying over the history of pairs present before (c gets the old arrays).
   // loop_threads: of its loop (model/parallel.h); the result does not depend on it.
   void rebuild(CandidatePairs& c, const Particles& p, int n_materials, int loop_threads);
+  // The same, run by every thread of a team inside its parallel region (model/parallel.h); the list is
+  // complete after the team's next sync.
+  void rebuild(CandidatePairs& c, const Particles& p, int n_materials, const Team& team);
   // Splits the particles (positions x) into `threads` slabs across the longest side of their bounding box,
   // thread t's slab of about share[t] of the total cost (particles, pairs, touching pairs, and `extra` per
   // particle where given: the force passes' own work, e.g. a fluid kick); equal shares without `share`.
@@ -124,6 +129,8 @@ struct WallContacts {
   // Rebuilds the candidate lists at time t (walls at their positions then), carrying over the history of
   // candidates that stay; a (particle, wall) that is no longer a candidate is not touching, so it has none.
   void rebuild(const std::vector<Wall>& walls, const Particles& p, double t, double skin, int threads);
+  // The same, run by every thread of a team inside its parallel region; complete after the team's next sync.
+  void rebuild(const std::vector<Wall>& walls, const Particles& p, double t, double skin, const Team& team);
   // The particles were renamed (map and np as PairList::rename): each kept particle's candidates move to
   // its new index with their history and flags; a removed particle's are dropped.
   void rename(const std::vector<std::uint32_t>& map, std::size_t np);

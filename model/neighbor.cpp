@@ -2,6 +2,7 @@
 #include "model/neighbor.h"
 
 #include <algorithm>
+#include <array>
 #include <climits>
 #include <cmath>
 #include <cstdint>
@@ -88,168 +89,190 @@ long NeighborSearch::Level::clamp_cell(double v, int axis) const {
 
 void NeighborSearch::build(const std::vector<Vec3>& x, const std::vector<double>& radius, double skin,
                            CandidatePairs& out, int threads) {
-  const std::size_t n = x.size();
-  out.i.clear();
-  out.j.clear();
-  if (n < 2) return;
-  const long nn = static_cast<long>(n);
-  const int nthreads = threads;
-  level_of_.resize(n);
-  cell_id_.resize(n);
-  slot_.resize(n);
-  const std::size_t nchunks = (n + kFinders - 1) / kFinders;
-  if (chunks_.size() < nchunks) chunks_.resize(nchunks);
-  offset_.assign(nchunks + 1, 0);
-  double lox = x[0].x, loy = x[0].y, loz = x[0].z, hix = lox, hiy = loy, hiz = loz;
-  Vec3 lo;
-  // One parallel region with three barriers (on this 2-core VM a sleeping thread takes tens of us to wake,
-  // and a pour rebuilds every ~8 steps): the bounding box in parallel, the set-up in one thread (size
-  // levels, grids, counting sort: linear, a fraction of the search), the search in parallel, then the
-  // concatenation in one thread.
-#pragma omp parallel num_threads(nthreads)
-  {
-#pragma omp for reduction(min : lox, loy, loz) reduction(max : hix, hiy, hiz)
-    for (long k = 0; k < nn; ++k) {
-      lox = std::min(lox, x[k].x), loy = std::min(loy, x[k].y), loz = std::min(loz, x[k].z);
-      hix = std::max(hix, x[k].x), hiy = std::max(hiy, x[k].y), hiz = std::max(hiz, x[k].z);
-    }
-#pragma omp single
-    {
-      lo = {lox, loy, loz};
-      const Vec3 hi{hix, hiy, hiz};
-      // Size classes of a factor 2 in radius: level = floor(log2(r / r_min)); one level for ratios < 2.
-      // Radii do not change during a run: recomputed only when they differ from the last build's.
-      if (radius_ != radius) {
-        radius_ = radius;
-        double rmin = radius[0];
-        for (double r : radius) rmin = std::min(rmin, r);
-        nlev_ = 1;
-        for (std::size_t k = 0; k < n; ++k) {
-          level_of_[k] = std::min(30, static_cast<int>(std::floor(std::log2(radius[k] / rmin))));
-          nlev_ = std::max(nlev_, level_of_[k] + 1);
-        }
-      }
-      lev_.resize(static_cast<std::size_t>(nlev_));
-      for (Level& L : lev_) {
-        L.rmax = 0.0;
-        L.count = 0;
-      }
-      for (std::size_t k = 0; k < n; ++k) {
-        Level& L = lev_[static_cast<std::size_t>(level_of_[k])];
-        L.rmax = std::max(L.rmax, radius[k]);
-        ++L.count;
-      }
-      for (Level& L : lev_) {
-        L.sorted.resize(L.count);
-        L.xs.resize(L.count);
-        L.ys.resize(L.count);
-        L.zs.resize(L.count);
-        L.rs.resize(L.count);
-        if (L.count == 0) {
-          L.start.assign(2, 0);
-          continue;
-        }
-        L.cell = 2.0 * L.rmax + skin;
-        // A sparse cloud must not allocate a huge grid: grow the cells until there are at most ~4 per particle.
-        auto cells = [&](double c) {
-          L.dim[0] = static_cast<long>((hi.x - lo.x) / c) + 1;
-          L.dim[1] = static_cast<long>((hi.y - lo.y) / c) + 1;
-          L.dim[2] = static_cast<long>((hi.z - lo.z) / c) + 1;
-          return static_cast<double>(L.dim[0]) * static_cast<double>(L.dim[1]) * static_cast<double>(L.dim[2]);
-        };
-        while (cells(L.cell) > 4.0 * static_cast<double>(L.count) + 64.0) L.cell *= 1.5;
-        L.inv = 1.0 / L.cell;
-        L.start.assign(static_cast<std::size_t>(L.dim[0] * L.dim[1] * L.dim[2]) + 1, 0);
-      }
-      // Counting sort per level, stable (ascending index inside a cell): count into start[c + 1], prefix
-      // sums, fill with start[c] as the cursor, then shift start back by one cell.
-      for (std::size_t k = 0; k < n; ++k) {
-        Level& L = lev_[static_cast<std::size_t>(level_of_[k])];
-        cell_id_[k] = static_cast<std::uint32_t>(L.index(L.clamp_cell(x[k].x - lo.x, 0), L.clamp_cell(x[k].y - lo.y, 1),
-                                                         L.clamp_cell(x[k].z - lo.z, 2)));
-        ++L.start[cell_id_[k] + 1];
-      }
-      for (Level& L : lev_)
-        for (std::size_t c = 0; c + 1 < L.start.size(); ++c) L.start[c + 1] += L.start[c];
-      for (std::size_t k = 0; k < n; ++k) {
-        Level& L = lev_[static_cast<std::size_t>(level_of_[k])];
-        const std::uint32_t s = L.start[cell_id_[k]]++;
-        L.sorted[s] = static_cast<std::uint32_t>(k);
-        L.xs[s] = x[k].x;
-        L.ys[s] = x[k].y;
-        L.zs[s] = x[k].z;
-        L.rs[s] = radius[k];
-        slot_[k] = s;
-      }
-      for (Level& L : lev_) {
-        for (std::size_t c = L.start.size() - 1; c >= 1; --c) L.start[c] = L.start[c - 1];
-        L.start[0] = 0;
-      }
-    }
+  YieldBarrier barrier;
+  run_team(threads, barrier, [&](const Team& t) { build(x, radius, skin, out, t); });
+}
 
-#pragma omp for schedule(dynamic, 1)
+void NeighborSearch::build(const std::vector<Vec3>& x, const std::vector<double>& radius, double skin,
+                           CandidatePairs& out, const Team& t) {
+  const std::size_t n = x.size();
+  if (n < 2) {
+    if (t.me == 0) out.i.clear(), out.j.clear();
+    return;
+  }
+  // Five phases, four syncs of the team (no libgomp region or barrier: on this 2-core VM a sleeping
+  // thread takes tens of us to wake, and a pour rebuilds every ~8 steps): each thread's bounding box of
+  // its share, their union and the set-up in thread 0 (size levels, grids, counting sort: linear, a
+  // fraction of the search), the search of the finder chunks dealt round-robin, then the concatenation in
+  // thread 0 (the caller syncs before reading `out`).
+  long k0 = 0, k1 = 0;
+  t.range(static_cast<long>(n), k0, k1);
+  std::array<double, 6> box{x[0].x, x[0].y, x[0].z, x[0].x, x[0].y, x[0].z};
+  for (long k = k0; k < k1; ++k) {
+    box[0] = std::min(box[0], x[k].x), box[1] = std::min(box[1], x[k].y), box[2] = std::min(box[2], x[k].z);
+    box[3] = std::max(box[3], x[k].x), box[4] = std::max(box[4], x[k].y), box[5] = std::max(box[5], x[k].z);
+  }
+  const std::size_t nchunks = (n + kFinders - 1) / kFinders;
+  if (t.me == 0) {
+    boxes_.resize(static_cast<std::size_t>(t.size));
+    level_of_.resize(n);
+    cell_id_.resize(n);
+    slot_.resize(n);
+    if (chunks_.size() < nchunks) chunks_.resize(nchunks);
+    offset_.assign(nchunks + 1, 0);
+  }
+  t.sync();
+  boxes_[static_cast<std::size_t>(t.me)] = box;
+  t.sync();
+  if (t.me == 0) set_up(x, radius, skin);
+  t.sync();
+  const Vec3 lo{boxes_[0][0], boxes_[0][1], boxes_[0][2]};
+  for (std::size_t c = static_cast<std::size_t>(t.me); c < nchunks; c += static_cast<std::size_t>(t.size))
+    search_chunk(c, x, radius, skin, lo);
+  t.sync();
+  if (t.me == 0) {
+    for (std::size_t c = 0; c < nchunks; ++c) offset_[c + 1] = offset_[c] + chunks_[c].n;
+    out.i.resize(offset_[nchunks]);
+    out.j.resize(offset_[nchunks]);
     for (std::size_t c = 0; c < nchunks; ++c) {
-      Chunk& ch = chunks_[c];
-      std::size_t m = 0;
-      // Candidates s0 .. s1 of level L against particle a, the pairs in scan order.
-      auto scan = [&](const Level& L, std::uint32_t s0, std::uint32_t s1, std::uint32_t a, const Vec3& xa, double ra) {
-        if (s1 <= s0) return;
-        if (m + (s1 - s0) + kSlack > ch.i.size()) {
-          ch.i.resize(2 * (m + (s1 - s0)) + 64);
-          ch.j.resize(ch.i.size());
-        }
-        m = detail::scan_candidates(L.xs.data(), L.ys.data(), L.zs.data(), L.rs.data(), L.sorted.data(), s0, s1, a,
-                                    xa, ra, ch.i.data(), ch.j.data(), m);
-      };
-      const std::size_t a_end = std::min(n, (c + 1) * kFinders);
-      for (std::size_t a = c * kFinders; a < a_end; ++a) {
-        const auto a32 = static_cast<std::uint32_t>(a);
-        const int la = level_of_[a];
-        const double ra = radius[a] + skin;
-        const Vec3 xa = x[a];
-        const Vec3 rel = xa - lo;
-        // Own level: half stencil, each pair of the level found once: the rest of the own cell (higher
-        // indices: the cell is sorted by index) and the next cell in x, then the 3-cell rows (y + 1, z),
-        // (y - 1 .. y + 1, z + 1); a row of cells is one contiguous range of the sorted particles.
-        {
-          const Level& L = lev_[static_cast<std::size_t>(la)];
-          const long c0 = L.clamp_cell(rel.x, 0), c1 = L.clamp_cell(rel.y, 1), c2 = L.clamp_cell(rel.z, 2);
-          const long xl = std::max(c0 - 1, 0L), xh = std::min(c0 + 1, L.dim[0] - 1);
-          auto row = [&](long first_x, long cy, long cz, std::uint32_t from) {
-            if (cy < 0 || cy >= L.dim[1] || cz >= L.dim[2]) return;
-            const std::uint32_t s0 = from != UINT32_MAX ? from : L.start[L.index(first_x, cy, cz)];
-            scan(L, s0, L.start[L.index(xh, cy, cz) + 1], a32, xa, ra);
-          };
-          row(c0, c1, c2, slot_[a] + 1);
-          row(xl, c1 + 1, c2, UINT32_MAX);
-          for (long cy = c1 - 1; cy <= c1 + 1; ++cy) row(xl, cy, c2 + 1, UINT32_MAX);
-        }
-        // Finer levels: every cell within the pair cutoff (a larger sphere finds each smaller partner once).
-        for (int lb = 0; lb < la; ++lb) {
-          const Level& L = lev_[static_cast<std::size_t>(lb)];
-          if (L.count == 0) continue;
-          const double reach = ra + L.rmax;
-          const long x0 = L.clamp_cell(rel.x - reach, 0), x1 = L.clamp_cell(rel.x + reach, 0);
-          const long y0 = L.clamp_cell(rel.y - reach, 1), y1 = L.clamp_cell(rel.y + reach, 1);
-          const long z0 = L.clamp_cell(rel.z - reach, 2), z1 = L.clamp_cell(rel.z + reach, 2);
-          for (long cz = z0; cz <= z1; ++cz)
-            for (long cy = y0; cy <= y1; ++cy)
-              scan(L, L.start[L.index(x0, cy, cz)], L.start[L.index(x1, cy, cz) + 1], a32, xa, ra);
-        }
-      }
-      ch.n = m;
-    }
-#pragma omp single nowait
-    {
-      for (std::size_t c = 0; c < nchunks; ++c) offset_[c + 1] = offset_[c] + chunks_[c].n;
-      out.i.resize(offset_[nchunks]);
-      out.j.resize(offset_[nchunks]);
-      for (std::size_t c = 0; c < nchunks; ++c) {
-        std::copy_n(chunks_[c].i.data(), chunks_[c].n, out.i.data() + offset_[c]);
-        std::copy_n(chunks_[c].j.data(), chunks_[c].n, out.j.data() + offset_[c]);
-      }
+      std::copy_n(chunks_[c].i.data(), chunks_[c].n, out.i.data() + offset_[c]);
+      std::copy_n(chunks_[c].j.data(), chunks_[c].n, out.j.data() + offset_[c]);
     }
   }
+}
+
+// The union of the threads' boxes (into boxes_[0]), the size levels, their grids and the counting sort.
+void NeighborSearch::set_up(const std::vector<Vec3>& x, const std::vector<double>& radius, double skin) {
+  const std::size_t n = x.size();
+  std::array<double, 6>& u = boxes_[0];
+  for (const auto& b : boxes_) {
+    for (int k = 0; k < 3; ++k) u[k] = std::min(u[k], b[k]);
+    for (int k = 3; k < 6; ++k) u[k] = std::max(u[k], b[k]);
+  }
+  const Vec3 lo{u[0], u[1], u[2]}, hi{u[3], u[4], u[5]};
+  // Size classes of a factor 2 in radius: level = floor(log2(r / r_min)); one level for ratios < 2.
+  // Radii do not change during a run: recomputed only when they differ from the last build's.
+  if (radius_ != radius) {
+    radius_ = radius;
+    double rmin = radius[0];
+    for (double r : radius) rmin = std::min(rmin, r);
+    nlev_ = 1;
+    for (std::size_t k = 0; k < n; ++k) {
+      level_of_[k] = std::min(30, static_cast<int>(std::floor(std::log2(radius[k] / rmin))));
+      nlev_ = std::max(nlev_, level_of_[k] + 1);
+    }
+  }
+  lev_.resize(static_cast<std::size_t>(nlev_));
+  for (Level& L : lev_) {
+    L.rmax = 0.0;
+    L.count = 0;
+  }
+  for (std::size_t k = 0; k < n; ++k) {
+    Level& L = lev_[static_cast<std::size_t>(level_of_[k])];
+    L.rmax = std::max(L.rmax, radius[k]);
+    ++L.count;
+  }
+  for (Level& L : lev_) {
+    L.sorted.resize(L.count);
+    L.xs.resize(L.count);
+    L.ys.resize(L.count);
+    L.zs.resize(L.count);
+    L.rs.resize(L.count);
+    if (L.count == 0) {
+      L.start.assign(2, 0);
+      continue;
+    }
+    L.cell = 2.0 * L.rmax + skin;
+    // A sparse cloud must not allocate a huge grid: grow the cells until there are at most ~4 per particle.
+    auto cells = [&](double c) {
+      L.dim[0] = static_cast<long>((hi.x - lo.x) / c) + 1;
+      L.dim[1] = static_cast<long>((hi.y - lo.y) / c) + 1;
+      L.dim[2] = static_cast<long>((hi.z - lo.z) / c) + 1;
+      return static_cast<double>(L.dim[0]) * static_cast<double>(L.dim[1]) * static_cast<double>(L.dim[2]);
+    };
+    while (cells(L.cell) > 4.0 * static_cast<double>(L.count) + 64.0) L.cell *= 1.5;
+    L.inv = 1.0 / L.cell;
+    L.start.assign(static_cast<std::size_t>(L.dim[0] * L.dim[1] * L.dim[2]) + 1, 0);
+  }
+  // Counting sort per level, stable (ascending index inside a cell): count into start[c + 1], prefix
+  // sums, fill with start[c] as the cursor, then shift start back by one cell.
+  for (std::size_t k = 0; k < n; ++k) {
+    Level& L = lev_[static_cast<std::size_t>(level_of_[k])];
+    cell_id_[k] = static_cast<std::uint32_t>(L.index(L.clamp_cell(x[k].x - lo.x, 0), L.clamp_cell(x[k].y - lo.y, 1),
+                                                     L.clamp_cell(x[k].z - lo.z, 2)));
+    ++L.start[cell_id_[k] + 1];
+  }
+  for (Level& L : lev_)
+    for (std::size_t c = 0; c + 1 < L.start.size(); ++c) L.start[c + 1] += L.start[c];
+  for (std::size_t k = 0; k < n; ++k) {
+    Level& L = lev_[static_cast<std::size_t>(level_of_[k])];
+    const std::uint32_t s = L.start[cell_id_[k]]++;
+    L.sorted[s] = static_cast<std::uint32_t>(k);
+    L.xs[s] = x[k].x;
+    L.ys[s] = x[k].y;
+    L.zs[s] = x[k].z;
+    L.rs[s] = radius[k];
+    slot_[k] = s;
+  }
+  for (Level& L : lev_) {
+    for (std::size_t c = L.start.size() - 1; c >= 1; --c) L.start[c] = L.start[c - 1];
+    L.start[0] = 0;
+  }
+}
+
+// The pairs found by the finders of chunk c (particles c kFinders .. (c + 1) kFinders), in scan order.
+void NeighborSearch::search_chunk(std::size_t c, const std::vector<Vec3>& x, const std::vector<double>& radius,
+                                  double skin, const Vec3& lo) {
+  const std::size_t n = x.size();
+  Chunk& ch = chunks_[c];
+  std::size_t m = 0;
+  // Candidates s0 .. s1 of level L against particle a, the pairs in scan order.
+  auto scan = [&](const Level& L, std::uint32_t s0, std::uint32_t s1, std::uint32_t a, const Vec3& xa, double ra) {
+    if (s1 <= s0) return;
+    if (m + (s1 - s0) + kSlack > ch.i.size()) {
+      ch.i.resize(2 * (m + (s1 - s0)) + 64);
+      ch.j.resize(ch.i.size());
+    }
+    m = detail::scan_candidates(L.xs.data(), L.ys.data(), L.zs.data(), L.rs.data(), L.sorted.data(), s0, s1, a,
+                                xa, ra, ch.i.data(), ch.j.data(), m);
+  };
+  const std::size_t a_end = std::min(n, (c + 1) * kFinders);
+  for (std::size_t a = c * kFinders; a < a_end; ++a) {
+    const auto a32 = static_cast<std::uint32_t>(a);
+    const int la = level_of_[a];
+    const double ra = radius[a] + skin;
+    const Vec3 xa = x[a];
+    const Vec3 rel = xa - lo;
+    // Own level: half stencil, each pair of the level found once: the rest of the own cell (higher
+    // indices: the cell is sorted by index) and the next cell in x, then the 3-cell rows (y + 1, z),
+    // (y - 1 .. y + 1, z + 1); a row of cells is one contiguous range of the sorted particles.
+    {
+      const Level& L = lev_[static_cast<std::size_t>(la)];
+      const long c0 = L.clamp_cell(rel.x, 0), c1 = L.clamp_cell(rel.y, 1), c2 = L.clamp_cell(rel.z, 2);
+      const long xl = std::max(c0 - 1, 0L), xh = std::min(c0 + 1, L.dim[0] - 1);
+      auto row = [&](long first_x, long cy, long cz, std::uint32_t from) {
+        if (cy < 0 || cy >= L.dim[1] || cz >= L.dim[2]) return;
+        const std::uint32_t s0 = from != UINT32_MAX ? from : L.start[L.index(first_x, cy, cz)];
+        scan(L, s0, L.start[L.index(xh, cy, cz) + 1], a32, xa, ra);
+      };
+      row(c0, c1, c2, slot_[a] + 1);
+      row(xl, c1 + 1, c2, UINT32_MAX);
+      for (long cy = c1 - 1; cy <= c1 + 1; ++cy) row(xl, cy, c2 + 1, UINT32_MAX);
+    }
+    // Finer levels: every cell within the pair cutoff (a larger sphere finds each smaller partner once).
+    for (int lb = 0; lb < la; ++lb) {
+      const Level& L = lev_[static_cast<std::size_t>(lb)];
+      if (L.count == 0) continue;
+      const double reach = ra + L.rmax;
+      const long x0 = L.clamp_cell(rel.x - reach, 0), x1 = L.clamp_cell(rel.x + reach, 0);
+      const long y0 = L.clamp_cell(rel.y - reach, 1), y1 = L.clamp_cell(rel.y + reach, 1);
+      const long z0 = L.clamp_cell(rel.z - reach, 2), z1 = L.clamp_cell(rel.z + reach, 2);
+      for (long cz = z0; cz <= z1; ++cz)
+        for (long cy = y0; cy <= y1; ++cy)
+          scan(L, L.start[L.index(x0, cy, cz)], L.start[L.index(x1, cy, cz) + 1], a32, xa, ra);
+    }
+  }
+  ch.n = m;
 }
 
 CandidatePairs build_pairs(const std::vector<Vec3>& x, const std::vector<double>& radius, double skin) {

@@ -16,9 +16,11 @@
 // (any thread), each chunk writes its own buffer, and the buffers are concatenated in chunk order.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
+#include "model/parallel.h"
 #include "model/vec3.h"
 
 namespace pastemix::model {
@@ -35,6 +37,10 @@ class NeighborSearch {
   // threads: of its loops (model/parallel.h; 1 for a small list); the pairs do not depend on it.
   void build(const std::vector<Vec3>& x, const std::vector<double>& radius, double skin, CandidatePairs& out,
              int threads);
+  // The same, run by every thread of a team inside its parallel region (model/parallel.h); `out` is
+  // complete after the team's next sync.
+  void build(const std::vector<Vec3>& x, const std::vector<double>& radius, double skin, CandidatePairs& out,
+             const Team& team);
 
   // One grid level: the particles whose radius falls in one size class, counting-sorted into cells of
   // 2 r_max(level) + skin.
@@ -64,6 +70,11 @@ class NeighborSearch {
   std::vector<std::uint32_t> cell_id_, slot_;  // slot_[k]: k's position in its level's `sorted`
   std::vector<Chunk> chunks_;
   std::vector<std::size_t> offset_;
+  std::vector<std::array<double, 6>> boxes_;  // per thread: the bounding box (min xyz, max xyz) of its share
+
+  void set_up(const std::vector<Vec3>& x, const std::vector<double>& radius, double skin);
+  void search_chunk(std::size_t c, const std::vector<Vec3>& x, const std::vector<double>& radius, double skin,
+                    const Vec3& lo);
 };
 
 namespace detail {

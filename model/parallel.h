@@ -8,6 +8,7 @@
 
 #include <sched.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <thread>
@@ -58,5 +59,35 @@ class YieldBarrier {
   alignas(64) std::atomic<int> count_{0};
   alignas(64) std::atomic<unsigned> gen_{0};
 };
+
+// One thread's view of a team that runs a multi-phase job inside one parallel region (the neighbour
+// rebuild: search, pair list, wall lists), its phases separated by sync() on a YieldBarrier instead of
+// libgomp regions and barriers (each of which sleeps and wakes under OMP_WAIT_POLICY=passive, issue 19).
+// A one-thread team never waits.
+struct Team {
+  int me = 0;
+  int size = 1;
+  YieldBarrier* barrier = nullptr;
+  void sync() const {
+    if (size > 1) barrier->wait(size);
+  }
+  // This thread's share [lo, hi) of n items: contiguous, in thread order (as OpenMP's static schedule).
+  void range(long n, long& lo, long& hi) const {
+    const long per = n / size, extra = n % size;
+    lo = me * per + std::min<long>(me, extra);
+    hi = lo + per + (me < extra ? 1 : 0);
+  }
+};
+
+// Runs job(team) on `threads` threads in one parallel region (the whole team waits on `barrier`).
+template <class Job>
+void run_team(int threads, YieldBarrier& barrier, Job&& job) {
+  if (threads <= 1) {
+    job(Team{});
+    return;
+  }
+#pragma omp parallel num_threads(threads)
+  job(Team{omp_get_thread_num(), omp_get_num_threads(), &barrier});
+}
 
 }  // namespace pastemix::model

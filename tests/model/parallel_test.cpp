@@ -48,3 +48,47 @@ TEST_CASE("parallel: one thread passes the yield barrier at once, and a late thr
   CHECK(late_done.load());
   late.join();
 }
+
+// A team's shares must cover every item once, in thread order, as even as possible: the rebuild's loops
+// (search bounding box, pair list, wall lists) each write outputs indexed by the item only.
+TEST_CASE("parallel: a team's ranges cover the items once, contiguous and in thread order") {
+  for (int size : {1, 2, 3, 7})
+    for (long n : {0L, 1L, 5L, 64L, 1001L}) {
+      long next = 0;
+      for (int me = 0; me < size; ++me) {
+        long lo = -1, hi = -1;
+        Team{me, size, nullptr}.range(n, lo, hi);
+        CHECK(lo == next);
+        CHECK(hi >= lo);
+        CHECK(hi - lo <= n / size + 1);
+        CHECK(hi - lo >= n / size);
+        next = hi;
+      }
+      CHECK(next == n);
+    }
+}
+
+// run_team: every thread of the region runs the job with its own rank, and sync() holds each phase until
+// all have finished the one before (the rebuild's phases read what other threads wrote).
+TEST_CASE("parallel: run_team gives each thread its rank and its syncs separate the phases") {
+  for (int threads : {1, 2, 3}) {
+    YieldBarrier barrier;
+    std::vector<int> seen(8, 0), phase(8, -1);
+    std::atomic<int> wrong{0}, size_seen{0};
+    run_team(threads, barrier, [&](const Team& t) {
+      size_seen = t.size;
+      for (int p = 0; p < 200; ++p) {
+        phase[static_cast<std::size_t>(t.me)] = p;
+        t.sync();
+        for (int u = 0; u < t.size; ++u)
+          if (phase[static_cast<std::size_t>(u)] != p) wrong.fetch_add(1);
+        t.sync();
+      }
+      ++seen[static_cast<std::size_t>(t.me)];
+    });
+    CHECK(wrong.load() == 0);
+    for (int me = 0; me < size_seen.load(); ++me) CHECK(seen[static_cast<std::size_t>(me)] == 1);
+    CHECK(size_seen.load() >= 1);
+    CHECK(size_seen.load() <= threads);
+  }
+}
