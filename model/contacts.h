@@ -131,6 +131,16 @@ struct WallContacts {
   void rebuild(const std::vector<Wall>& walls, const Particles& p, double t, double skin, int threads);
   // The same, run by every thread of a team inside its parallel region; complete after the team's next sync.
   void rebuild(const std::vector<Wall>& walls, const Particles& p, double t, double skin, const Team& team);
+  // rebuild() in its steps, for a team that overlaps them with other work (World::rebuild_neighbors):
+  // prepare (one thread), then the candidate flags of the blocks of kWallBlock particles [b0, b1) (any
+  // threads, any split of the blocks), then lay_out (one thread, after every block's flags), the rows of the
+  // particles [a0, a1) (after lay_out) and swap_in (one thread, after every row).
+  void prepare(std::size_t n_particles, std::size_t n_walls);
+  static long blocks(std::size_t n_particles);
+  void flag_blocks(const std::vector<Wall>& walls, const Particles& p, double t, double skin, long b0, long b1);
+  void lay_out();
+  void fill_rows(long a0, long a1);
+  void swap_in();
   // The particles were renamed (map and np as PairList::rename): each kept particle's candidates move to
   // its new index with their history and flags; a removed particle's are dropped.
   void rename(const std::vector<std::uint32_t>& map, std::size_t np);
@@ -138,6 +148,7 @@ struct WallContacts {
  private:
   std::vector<char> cand_;            // rebuild(): per particle and wall, candidate or not
   std::vector<std::uint32_t> count_;  // rebuild(): per particle, its candidate walls
+  std::size_t cand_walls_ = 0;        // rebuild(): walls per particle in cand_
   std::vector<std::uint32_t> spare_start_, spare_touch_;
   std::vector<std::uint16_t> spare_near_;
   std::vector<double> spare_hist_;

@@ -94,10 +94,13 @@ void NeighborSearch::build(const std::vector<Vec3>& x, const std::vector<double>
 }
 
 void NeighborSearch::build(const std::vector<Vec3>& x, const std::vector<double>& radius, double skin,
-                           CandidatePairs& out, const Team& t) {
+                           CandidatePairs& out, const Team& t, const std::function<void(const Team&)>& side) {
   const std::size_t n = x.size();
   if (n < 2) {
-    if (t.me == 0) out.i.clear(), out.j.clear();
+    if (t.me == 0)
+      out.i.clear(), out.j.clear();
+    else if (side)
+      side(Team{t.me - 1, t.size - 1, nullptr});
     return;
   }
   // Five phases, four syncs of the team (no libgomp region or barrier: on this 2-core VM a sleeping
@@ -124,7 +127,10 @@ void NeighborSearch::build(const std::vector<Vec3>& x, const std::vector<double>
   t.sync();
   boxes_[static_cast<std::size_t>(t.me)] = box;
   t.sync();
-  if (t.me == 0) set_up(x, radius, skin);
+  if (t.me == 0)
+    set_up(x, radius, skin);
+  else if (side)
+    side(Team{t.me - 1, t.size - 1, nullptr});
   t.sync();
   const Vec3 lo{boxes_[0][0], boxes_[0][1], boxes_[0][2]};
   for (std::size_t c = static_cast<std::size_t>(t.me); c < nchunks; c += static_cast<std::size_t>(t.size))

@@ -18,6 +18,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "model/parallel.h"
@@ -38,9 +39,11 @@ class NeighborSearch {
   void build(const std::vector<Vec3>& x, const std::vector<double>& radius, double skin, CandidatePairs& out,
              int threads);
   // The same, run by every thread of a team inside its parallel region (model/parallel.h); `out` is
-  // complete after the team's next sync.
+  // complete after the team's next sync. side: work for the other threads while thread 0 sorts the
+  // particles into the grids (a serial phase), as a team of the threads 1 .. size - 1 that must not sync;
+  // not run by a one-thread team.
   void build(const std::vector<Vec3>& x, const std::vector<double>& radius, double skin, CandidatePairs& out,
-             const Team& team);
+             const Team& team, const std::function<void(const Team&)>& side = {});
 
   // One grid level: the particles whose radius falls in one size class, counting-sorted into cells of
   // 2 r_max(level) + skin.

@@ -47,6 +47,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <exception>
 #include <limits>
 
 #include <fmt/format.h>
@@ -105,20 +106,46 @@ void World::rebuild_neighbors() {
     throw RuntimeFailure(fmt::format("neighbour list at t = {} s disagrees with brute force", t_));
   pairs_.rebuild(candidates_, p_, n_materials, threads);
   wall_contacts_.rebuild(walls_, p_, t_, cfg_.skin, threads);
+  x_at_rebuild_ = p_.x;
+  partition(threads, p_.x);
 #else
-  // The search, the pair list and the wall lists in one team, synced by the yielding barrier: as separate
-  // libgomp regions (about ten regions and barriers per rebuild) the second thread slept and woke at each
-  // under OMP_WAIT_POLICY=passive, and the 2-thread pour's rebuilds took as long as on one thread (issue 19).
+  // The search, the pair list, the wall lists and the partition in one team, synced by the yielding
+  // barrier: as separate libgomp regions (about ten regions and barriers per rebuild) the second thread
+  // slept and woke at each under OMP_WAIT_POLICY=passive, and the 2-thread pour's rebuilds took as long as
+  // on one thread (issue 19). The serial parts overlap: while thread 0 sorts the particles into the
+  // search's grids, the others flag the wall candidates; while it partitions, thread 1 lays out the wall
+  // lists and keeps the positions of this build.
+  const std::size_t n = p_.size();
+  std::exception_ptr failure;
   run_team(threads, step_barrier_, [&](const Team& team) {
-    search_.build(p_.x, p_.radius, cfg_.skin, candidates_, team);
+    if (team.me == 0) wall_contacts_.prepare(n, walls_.size());
+    team.sync();  // (the search may return before its own first sync: one particle)
+    auto flags = [&](const Team& part) {
+      long b0 = 0, b1 = 0;
+      part.range(WallContacts::blocks(n), b0, b1);
+      wall_contacts_.flag_blocks(walls_, p_, t_, cfg_.skin, b0, b1);
+    };
+    search_.build(p_.x, p_.radius, cfg_.skin, candidates_, team, flags);
+    if (team.size == 1) flags(team);
     team.sync();
     pairs_.rebuild(candidates_, p_, n_materials, team);
-    wall_contacts_.rebuild(walls_, p_, t_, cfg_.skin, team);
+    // (thread 0 finishes the pair list: no sync needed before it partitions them)
+    if (team.me == (team.size > 1 ? 1 : 0)) {
+      wall_contacts_.lay_out();
+      wall_contacts_.fill_rows(0, static_cast<long>(n));
+      wall_contacts_.swap_in();
+      x_at_rebuild_ = p_.x;
+    }
+    // The threads' particles and pairs (slabs of the new positions), for the thread count of this build.
+    // (An error leaves the region first: nobody syncs after this.)
+    if (team.me == 0) try {
+        partition(threads, p_.x);
+      } catch (...) {
+        failure = std::current_exception();
+      }
   });
+  if (failure) std::rethrow_exception(failure);
 #endif
-  x_at_rebuild_ = p_.x;
-  // The threads' particles and pairs (slabs of the new positions), for the thread count of this build.
-  partition(threads, p_.x);
   t_at_rebuild_ = t_;
   ++profile_.rebuilds;
 }
