@@ -132,6 +132,7 @@ class World {
   // map and rebuilds the lists (RuntimeFailure past max_escaped_fraction).
   void remove_escaped(double& moved2);
   void rebuild_neighbors();
+  void rebuild_lists(int threads);
   // pairs_.partition with the passes' own cost per particle (partition_cost(a), where a pass has one).
   void partition(int threads, const std::vector<Vec3>& x);
   void update_shares(int threads);
