@@ -3,6 +3,7 @@
 // with the neighbour search (World::rebuild_neighbors), and their renaming at a spatial sort or a removal.
 #include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "model/contacts.h"
@@ -81,21 +82,25 @@ void WallContacts::flag_blocks(const std::vector<Wall>& w, const Particles& p, d
     for (std::size_t k = 0; k < nw; ++k) {
       char* ck = cand + k;
       const Wall& wk = w[k];
-      const bool on = active[k] != 0;
-      // The bound only skips walls that are clearly out of reach (the margin absorbs its round-off). A
-      // rectangle's (the box walls of most scenes) is its plane's distance, in a loop of its own that the
-      // compiler vectorises (through wall_distance_bound's dispatch per particle, the flags of a 13k pour's
-      // box took 0.35 ms per rebuild, longer than the search's serial set-up they run beside).
-      if (on && wk.kind == WallKind::rectangle) {
-        const Vec3 o = wk.origin + shift[k], u = wk.unit_normal;
-        for (long a = a0; a < a1; ++a) {
-          const double d = (x[a].x - o.x) * u.x + (x[a].y - o.y) * u.y + (x[a].z - o.z) * u.z;
-          ck[a * stride] = std::abs(d) < (radius[a] + skin) * (1.0 + 1e-9);
-        }
-      } else {
-        for (long a = a0; a < a1; ++a)
-          ck[a * stride] = on && wall_distance_bound(wk, shift[k], x[a]) < (radius[a] + skin) * (1.0 + 1e-9);
-      }
+      // The bound only skips walls that are clearly out of reach (the margin absorbs its round-off). Its
+      // kind is picked here, once per wall, and its parameters copied (the char stores may alias the wall):
+      // through wall_distance_bound's dispatch per particle the compiler did not vectorise the loop, and
+      // the flags of a 13k pour's box took 0.35 ms per rebuild, longer than the search's serial set-up
+      // they run beside.
+      const auto flag = [&](auto bound) {
+        for (long a = a0; a < a1; ++a) ck[a * stride] = bound(x[a]) < (radius[a] + skin) * (1.0 + 1e-9);
+      };
+      const Vec3 o = wk.origin + shift[k];
+      if (!active[k])
+        flag([](const Vec3&) { return std::numeric_limits<double>::infinity(); });
+      else if (wk.kind == WallKind::rectangle)
+        flag([o, n = wk.unit_normal](const Vec3& q) { return rectangle_distance_bound(o, n, q); });
+      else if (wk.kind == WallKind::revolution)
+        flag([o, lo = std::min(wk.z0, wk.z1), hi = std::max(wk.z0, wk.z1)](const Vec3& q) {
+          return revolution_distance_bound(lo, hi, o, q);
+        });
+      else
+        flag([](const Vec3&) { return 0.0; });
       for (long a = a0; a < a1; ++a) {
         if (!ck[a * stride]) continue;
         Vec3 unused;

@@ -12,6 +12,7 @@
 #include "model/laws/constant_torque.h"
 #include "model/laws/hertz_mindlin.h"
 #include "tests/model/scene_text.h"
+#include "tests/model/wall_box.h"
 
 using namespace pastemix;
 using namespace pastemix::model;
@@ -51,18 +52,8 @@ struct WallScene {
   std::vector<Wall> walls;
   Particles p;
   WallScene() {
-    auto rect = [&](Vec3 o, Vec3 u, Vec3 v) {
-      Wall w;
-      w.kind = WallKind::rectangle, w.material = 1, w.origin = o, w.u = u, w.v = v;
-      w.finish();
-      walls.push_back(w);
-    };
-    const double L = 0.05, h = 0.025;
-    rect({h, h, 0}, {h, 0, 0}, {0, h, 0});
-    rect({0, h, h}, {0, h, 0}, {0, 0, h});
-    rect({L, h, h}, {0, h, 0}, {0, 0, h});
-    rect({h, 0, h}, {h, 0, 0}, {0, 0, h});
-    rect({h, L, h}, {h, 0, 0}, {0, 0, h});
+    const double L = 0.05;
+    walls = model::test::open_box(L, 1);
     p.enable_rotation();
     Rng rng(5);
     for (int k = 0; k < 300; ++k) {

@@ -8,6 +8,7 @@
 
 #include "base/rng.h"
 #include "model/contacts.h"
+#include "tests/model/wall_box.h"
 
 using namespace pastemix;
 using namespace pastemix::model;
@@ -20,18 +21,8 @@ struct Scene {
   std::vector<Wall> walls;
   Particles p;
   Scene() {
-    auto rect = [&](Vec3 o, Vec3 u, Vec3 v) {
-      Wall w;
-      w.kind = WallKind::rectangle, w.origin = o, w.u = u, w.v = v;
-      w.finish();
-      walls.push_back(w);
-    };
     const double h = 0.025;
-    rect({h, h, 0}, {h, 0, 0}, {0, h, 0});
-    rect({0, h, h}, {0, h, 0}, {0, 0, h});
-    rect({2 * h, h, h}, {0, h, 0}, {0, 0, h});
-    rect({h, 0, h}, {h, 0, 0}, {0, 0, h});
-    rect({h, 2 * h, h}, {h, 0, 0}, {0, 0, h});
+    walls = model::test::open_box(2 * h, 0);
     Wall cone;
     cone.kind = WallKind::revolution, cone.origin = {h, h, 0.06};
     cone.r0 = 0.01, cone.z0 = 0.0, cone.r1 = 0.03, cone.z1 = 0.03;
