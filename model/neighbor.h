@@ -60,6 +60,8 @@ class NeighborSearch {
       return static_cast<std::size_t>((cz * dim[1] + cy) * dim[0] + cx);
     }
   };
+  // The grid levels of the last build (tests: their cell sizes).
+  const std::vector<Level>& levels() const { return lev_; }
 
  private:
   struct Chunk {

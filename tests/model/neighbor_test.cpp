@@ -118,3 +118,35 @@ TEST_CASE("neighbor: the candidate scan gives the scalar loop's pairs in its ord
   const auto end = pj.begin() + static_cast<long>(m);
   for (int s = 0; s < n; s += 5) CHECK((std::find(pj.begin(), end, sorted[s]) != end) == (s % 10 != 0));
 }
+
+TEST_CASE("neighbor: a pour's tall, mostly empty box keeps cells of 2 r_max + skin, its pairs those of brute force") {
+  // A pile 10 x 10 x 2 cm of 20,000 spheres and a stream of 1,000 falling 40 cm above it, 1 cm wide: the box
+  // holds ~19 cells of 2 r_max + skin per sphere. Cells grown for the empty box would make every finder
+  // scan several times the candidates (chapter-7 test 1: 2.25x the cell, issue 19).
+  std::vector<Vec3> x;
+  std::vector<double> r;
+  cloud(31, 20000, {0.1, 0.1, 0.02}, 1.0, x, r);
+  Rng rng(32);
+  for (int k = 0; k < 1000; ++k) {
+    x.push_back({0.045 + 0.01 * rng.uniform(0, 1), 0.045 + 0.01 * rng.uniform(0, 1), rng.uniform(0.02, 0.42)});
+    r.push_back(0.5e-3 * rng.uniform(1.0, 1.5));
+  }
+  const double skin = 0.4e-3;
+  NeighborSearch search;
+  CandidatePairs pairs;
+  search.build(x, r, skin, pairs, 1);
+  REQUIRE(search.levels().size() == 1);
+  const auto& level = search.levels()[0];
+  CHECK(level.cell == doctest::Approx(2.0 * level.rmax + skin).epsilon(1e-12));
+  const double cells = static_cast<double>(level.dim[0]) * level.dim[1] * level.dim[2];
+  CHECK(cells > 8.0 * x.size());  // the case this test is for: a sparse box
+  // The pairs: those of the O(N^2) search, as sets (the order is the scan's).
+  const CandidatePairs ref = brute_force_pairs(x, r, skin);
+  auto sorted_pairs = [](const CandidatePairs& c) {
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> v;
+    for (std::size_t k = 0; k < c.i.size(); ++k) v.emplace_back(c.i[k], c.j[k]);
+    std::sort(v.begin(), v.end());
+    return v;
+  };
+  CHECK(sorted_pairs(pairs) == sorted_pairs(ref));
+}
