@@ -276,14 +276,30 @@ void PairList::rebuild(CandidatePairs& c, const Particles& p, int n_materials, c
   std::uint32_t law_lo = kNone, law_hi = 0;
   long k0 = 0, k1 = 0;
   t.range(static_cast<long>(n), k0, k1);
+  // The pairs' constants in a loop of their own, without the carry-over's search: it vectorises (gathers,
+  // eight divisions per instruction; one loop, stalled on the loads and divisions of one pair at a time, was
+  // 5.8 % of chapter-7 test 2's run).
+  {
+    const std::uint32_t *ci = c.i.data(), *cj = c.j.data();
+    const double *rad = p.radius.data(), *mass = p.mass.data();
+    const int* mat = p.material.data();
+    double *rs = r_star.data(), *ms = m_star.data(), *sum = rsum.data();
+    std::uint32_t* law = law_index.data();
+#pragma omp simd
+    for (long k = k0; k < k1; ++k) {
+      const std::uint32_t a = ci[k], b = cj[k];
+      rs[k] = rad[a] * rad[b] / (rad[a] + rad[b]);
+      ms[k] = mass[a] * mass[b] / (mass[a] + mass[b]);
+      sum[k] = rad[a] + rad[b];
+      law[k] = static_cast<std::uint32_t>(mat[a] * n_materials + mat[b]);
+    }
+  }
   for (long k = k0; k < k1; ++k) {
-    const std::uint32_t a = c.i[k], b = c.j[k];
-    r_star[k] = p.radius[a] * p.radius[b] / (p.radius[a] + p.radius[b]);
-    m_star[k] = p.mass[a] * p.mass[b] / (p.mass[a] + p.mass[b]);
-    rsum[k] = p.radius[a] + p.radius[b];
-    law_index[k] = static_cast<std::uint32_t>(p.material[a] * n_materials + p.material[b]);
     law_lo = std::min(law_lo, law_index[k]);
     law_hi = std::max(law_hi, law_index[k]);
+  }
+  for (long k = k0; k < k1; ++k) {
+    const std::uint32_t a = c.i[k], b = c.j[k];
     std::uint32_t from = kNone;  // the old pair whose spring (a, b) carries, if any
     if (carry)
       for (std::uint32_t e = start[a]; e < start[a + 1]; ++e) {
