@@ -209,29 +209,30 @@ void NeighborSearch::set_up(const std::vector<Vec3>& x, const std::vector<double
     L.inv = 1.0 / L.cell;
     L.start.assign(static_cast<std::size_t>(L.dim[0] * L.dim[1] * L.dim[2]) + 1, 0);
   }
-  // Counting sort per level, stable (ascending index inside a cell): count into start[c + 1], prefix
-  // sums, fill with start[c] as the cursor, then shift start back by one cell.
+  // Counting sort per level, stable (ascending index inside a cell): count into start[c], running sums
+  // (start[c]: the end of cell c), then fill from the last particle down with start[c] as the cursor, which
+  // leaves start[c] at the beginning of cell c. (Counting into start[c + 1] and filling upwards needs a
+  // shift of the whole array back by one cell: a pass over a tall pour's ~1 M cells at every rebuild.)
   for (std::size_t k = 0; k < n; ++k) {
     Level& L = lev_[static_cast<std::size_t>(level_of_[k])];
     cell_id_[k] = static_cast<std::uint32_t>(L.index(L.clamp_cell(x[k].x - lo.x, 0), L.clamp_cell(x[k].y - lo.y, 1),
                                                      L.clamp_cell(x[k].z - lo.z, 2)));
-    ++L.start[cell_id_[k] + 1];
+    ++L.start[cell_id_[k]];
   }
-  for (Level& L : lev_)
-    for (std::size_t c = 0; c + 1 < L.start.size(); ++c) L.start[c + 1] += L.start[c];
-  for (std::size_t k = 0; k < n; ++k) {
+  for (Level& L : lev_) {
+    const std::size_t cells = L.start.size() - 1;
+    for (std::size_t c = 1; c < cells; ++c) L.start[c] += L.start[c - 1];
+    L.start[cells] = static_cast<std::uint32_t>(L.count);
+  }
+  for (std::size_t k = n; k-- > 0;) {
     Level& L = lev_[static_cast<std::size_t>(level_of_[k])];
-    const std::uint32_t s = L.start[cell_id_[k]]++;
+    const std::uint32_t s = --L.start[cell_id_[k]];
     L.sorted[s] = static_cast<std::uint32_t>(k);
     L.xs[s] = x[k].x;
     L.ys[s] = x[k].y;
     L.zs[s] = x[k].z;
     L.rs[s] = radius[k];
     slot_[k] = s;
-  }
-  for (Level& L : lev_) {
-    for (std::size_t c = L.start.size() - 1; c >= 1; --c) L.start[c] = L.start[c - 1];
-    L.start[0] = 0;
   }
 }
 
