@@ -17,44 +17,6 @@ namespace {
 // the candidates of a settled bed are not touching; a mixed loop mispredicted the "touching?" branch.
 constexpr long kChunk = 256;
 
-// The partition's slabs (PairList::partition): kSlabBins bins along the axis; the axis is chosen again at
-// every kAxisEvery-th partition.
-constexpr int kSlabBins = 4096;
-constexpr long kAxisEvery = 8;
-
-// Each particle's bin along `axis` (bin_of) and the first bin of each thread's slab (first[0 .. threads],
-// first[threads] = kSlabBins): thread t's slab ends where the cost cumulated along the axis reaches
-// total x upto[t + 1].
-void slab_cuts(const std::vector<Vec3>& x, const Vec3& lo, const Vec3& ext, int axis, const std::vector<double>& cost,
-               const std::vector<double>& upto, std::vector<int>& bin_of, std::vector<int>& first) {
-  const std::size_t np = x.size();
-  const int threads = static_cast<int>(upto.size()) - 1;
-  const double len = axis == 0 ? ext.x : axis == 1 ? ext.y : ext.z;
-  const double scale = len > 0.0 ? kSlabBins / len : 0.0;
-  std::vector<double> bin(kSlabBins + 1, 0.0);
-  double total = 0.0;
-  for (std::size_t a = 0; a < np; ++a) {
-    const double c = axis == 0 ? x[a].x - lo.x : axis == 1 ? x[a].y - lo.y : x[a].z - lo.z;
-    bin_of[a] = std::clamp(static_cast<int>(c * scale), 0, kSlabBins - 1);
-    bin[static_cast<std::size_t>(bin_of[a])] += cost[a];
-    total += cost[a];
-  }
-  first.assign(static_cast<std::size_t>(threads) + 1, kSlabBins);
-  first[0] = 0;
-  double run = 0.0;
-  int t = 1;
-  for (int b = 0; b < kSlabBins && t < threads; ++b) {
-    run += bin[static_cast<std::size_t>(b)];
-    while (t < threads && run >= total * upto[static_cast<std::size_t>(t)]) first[static_cast<std::size_t>(t++)] = b + 1;
-  }
-}
-
-// The thread whose slab holds bin b.
-int slab_of(const std::vector<int>& first, int b) {
-  const int o = static_cast<int>(std::upper_bound(first.begin(), first.end(), b) - first.begin()) - 1;
-  return std::clamp(o, 0, static_cast<int>(first.size()) - 2);
-}
-
 // The separation vectors x_j - x_i (m) of a chunk's touching candidates, one array per axis.
 struct Separations {
   double x[kChunk], y[kChunk], z[kChunk];
@@ -438,16 +400,20 @@ void PairList::partition(int n_threads, const std::vector<Vec3>& x, const std::v
   parity = 0;
   if (n_threads <= 1 || np == 0) return;
   if (n >= kCrossBit) throw std::length_error("pair list too long for the threads' pair lists (2^31 pairs)");
-  // Slabs across one axis of the particles' bounding box, of about equal cost: the fewer pairs cross a cut,
-  // the less work is done twice (settled bed, 2 threads: 2 % of the pairs cross a cut across its 20 cm side,
-  // 14 % cross a cut between the halves of the index range).
+  // Slabs across the longest side of the particles' bounding box, of about equal cost: the fewer pairs
+  // cross a cut, the less work is done twice (settled bed, 2 threads: 2 % of the pairs cross a cut across
+  // its 20 cm side, 14 % cross a cut between the halves of the index range).
   Vec3 lo = x[0], hi = x[0];
   for (const Vec3& q : x) {
     lo = {std::min(lo.x, q.x), std::min(lo.y, q.y), std::min(lo.z, q.z)};
     hi = {std::max(hi.x, q.x), std::max(hi.y, q.y), std::max(hi.z, q.z)};
   }
+  const Vec3 ext = hi - lo;
+  const int axis = ext.x >= ext.y && ext.x >= ext.z ? 0 : (ext.y >= ext.z ? 1 : 2);
+  auto coord = [&](const Vec3& q) { return axis == 0 ? q.x - lo.x : axis == 1 ? q.y - lo.y : q.z - lo.z; };
+  const double len = axis == 0 ? ext.x : axis == 1 ? ext.y : ext.z;
   // Cost of a particle, in rough units of one candidate test: its kick and walls (4), its candidate pairs
-  // (1 each) and its touching pairs (5 more each: the force law). Cumulated over kSlabBins bins along the axis.
+  // (1 each) and its touching pairs (5 more each: the force law). Cumulated over 4096 bins along the axis.
   std::vector<double> cost(np, 4.0);
   if (extra && extra->size() == np)
     for (std::size_t a = 0; a < np; ++a) cost[a] += (*extra)[a];
@@ -456,6 +422,20 @@ void PairList::partition(int n_threads, const std::vector<Vec3>& x, const std::v
     cost[i[k]] += c;
     cost[j[k]] += c;
   }
+  constexpr int kBins = 4096;
+  std::vector<double> bin(kBins + 1, 0.0);
+  std::vector<int> bin_of(np);
+  const double scale = len > 0.0 ? kBins / len : 0.0;
+  double total = 0.0;
+  for (std::size_t a = 0; a < np; ++a) {
+    bin_of[a] = std::clamp(static_cast<int>(coord(x[a]) * scale), 0, kBins - 1);
+    bin[static_cast<std::size_t>(bin_of[a])] += cost[a];
+    total += cost[a];
+  }
+  // First bin of each thread's slab.
+  std::vector<int> first(static_cast<std::size_t>(n_threads) + 1, kBins);
+  first[0] = 0;
+  double run = 0.0;
   // Thread t's slab ends where the cumulated cost reaches total x (share[0] + ... + share[t]).
   std::vector<double> upto(static_cast<std::size_t>(n_threads) + 1, 0.0);
   for (int u = 0; u < n_threads; ++u)
@@ -463,38 +443,24 @@ void PairList::partition(int n_threads, const std::vector<Vec3>& x, const std::v
         share && share->size() == static_cast<std::size_t>(n_threads)
             ? upto[static_cast<std::size_t>(u)] + (*share)[static_cast<std::size_t>(u)]
             : static_cast<double>(u + 1) / n_threads;
-  std::vector<int> bin_of(np), first;
-  // The axis: the longest side of the box, unless the cuts across another cross fewer pairs (counted on every
-  // 16th pair, at every kAxisEvery-th partition). A pour from a funnel is tallest in z, but once its rock is in
-  // the mould a cut across z runs through the whole pile: chapter-7 test 1 at t = 0.8-1.0 s, 12.7-14.3k of
-  // ~300k pairs crossed it, 3.3-3.4k a cut across x (issue 19).
-  const Vec3 ext = hi - lo;
-  int axis = ext.x >= ext.y && ext.x >= ext.z ? 0 : (ext.y >= ext.z ? 1 : 2);
-  if (partitions % kAxisEvery == 1 || slab_axis < 0) {
-    long fewest = -1;
-    const int longest = axis;
-    for (int c : {longest, (longest + 1) % 3, (longest + 2) % 3}) {
-      slab_cuts(x, lo, ext, c, cost, upto, bin_of, first);
-      long crossing = 0;
-      for (std::size_t k = 0; k < n; k += 16) crossing += slab_of(first, bin_of[i[k]]) != slab_of(first, bin_of[j[k]]);
-      if (fewest < 0 || crossing < fewest) fewest = crossing, axis = c;
-    }
-    slab_axis = axis;
+  int t = 1;
+  for (int b = 0; b < kBins && t < n_threads; ++b) {
+    run += bin[static_cast<std::size_t>(b)];
+    while (t < n_threads && run >= total * upto[static_cast<std::size_t>(t)]) first[static_cast<std::size_t>(t++)] = b + 1;
   }
-  axis = slab_axis;
-  slab_cuts(x, lo, ext, axis, cost, upto, bin_of, first);
   work.assign(static_cast<std::size_t>(n_threads), 0.0);
   for (std::size_t a = 0; a < np; ++a) {
-    owner[a] = static_cast<std::uint8_t>(slab_of(first, bin_of[a]));
+    const int o = static_cast<int>(std::upper_bound(first.begin(), first.end(), bin_of[a]) - first.begin()) - 1;
+    owner[a] = static_cast<std::uint8_t>(std::clamp(o, 0, n_threads - 1));
     own[owner[a]].push_back(static_cast<std::uint32_t>(a));
     work[owner[a]] += cost[a];
   }
   for (std::size_t k = 0; k < n; ++k) {
     const int oi = owner[i[k]], oj = owner[j[k]];
-    const auto e = static_cast<std::uint32_t>(k) | (oj != oi ? kCrossBit : 0u);
-    mine[static_cast<std::size_t>(oi)].push_back(e);
+    const auto entry = static_cast<std::uint32_t>(k) | (oj != oi ? kCrossBit : 0u);
+    mine[static_cast<std::size_t>(oi)].push_back(entry);
     if (oj != oi) {
-      mine[static_cast<std::size_t>(oj)].push_back(e);
+      mine[static_cast<std::size_t>(oj)].push_back(entry);
       cross[k] = static_cast<std::uint32_t>(cross_pairs.size());
       cross_pairs.push_back(static_cast<std::uint32_t>(k));
     }

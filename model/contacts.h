@@ -65,8 +65,7 @@ struct PairList {
   // owners for every pair made a settled bed's pair pass ~35 % dearer at 2 threads than at 1).
   static constexpr std::uint32_t kCrossBit = 0x80000000u;
   int threads = 0;
-  long partitions = 0;  // partition() calls so far: a stamp that changes whenever the owners may have changed
-  int slab_axis = -1;   // the axis the slabs are cut across (partition(); -1: not chosen yet)
+  long partitions = 0;  // partition() calls so far: a stamp that changes whenever the owners may have
   std::vector<std::uint8_t> owner;
   std::vector<std::vector<std::uint32_t>> own;
   std::vector<std::vector<std::uint32_t>> mine;
@@ -94,8 +93,8 @@ struct PairList {
   // The same, run by every thread of a team inside its parallel region (model/parallel.h); the list is
   // complete after the team's next sync.
   void rebuild(CandidatePairs& c, const Particles& p, int n_materials, const Team& team);
-  // Splits the particles (positions x) into `threads` slabs across one axis of their bounding box (the
-  // longest side, or the one whose cuts cross the fewest pairs, chosen every few partitions), thread t's slab of about share[t] of the total cost (particles, pairs, touching pairs, and `extra` per
+  // Splits the particles (positions x) into `threads` slabs across the longest side of their bounding box,
+  // thread t's slab of about share[t] of the total cost (particles, pairs, touching pairs, and `extra` per
   // particle where given: the force passes' own work, e.g. a fluid kick); equal shares without `share`.
   // work[t]: the cost of thread t's slab (the units of the load balance, World::partition).
   void partition(int threads, const std::vector<Vec3>& x, const std::vector<double>* extra = nullptr,

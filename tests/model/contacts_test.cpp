@@ -185,28 +185,3 @@ TEST_CASE("contacts: the partition gives each thread its share of the cost") {
     }
   }
 }
-
-TEST_CASE("contacts: the partition cuts across the axis whose cuts cross the fewest pairs, not the longest side") {
-  // A pile 10 x 3 x 2 cm and a sparse column of spheres up to 50 cm above it (a pour's stream): the box is
-  // tallest in z, but a cost-balanced cut across z runs through the pile's 10 x 3 cm section, one across x
-  // through its 3 x 2 cm one.
-  Rng rng(6);
-  Particles p;
-  for (int k = 0; k < 3000; ++k)
-    p.add(0, 1e-3, 2760, {rng.uniform(0, 0.1), rng.uniform(0, 0.03), rng.uniform(0, 0.02)}, {}, {});
-  for (int k = 0; k < 40; ++k) p.add(0, 1e-3, 2760, {0.05, 0.015, 0.03 + 0.012 * k}, {}, {});
-  CandidatePairs c = build_pairs(p.x, p.radius, 5e-4);
-  PairList L;
-  L.rebuild(c, p, 1, 1);
-  L.partition(2, p.x);
-  CHECK(L.slab_axis == 0);
-  const std::size_t across_x = L.cross_pairs.size();
-  // The same partition across z (the longest side) crosses several times the pairs.
-  L.slab_axis = 2;
-  L.partitions = 1;  // not a partition that chooses the axis again
-  L.partition(2, p.x);
-  CHECK(L.slab_axis == 2);
-  MESSAGE("cross pairs: " << across_x << " across x, " << L.cross_pairs.size() << " across z");
-  CHECK(L.cross_pairs.size() > 3 * across_x);
-  CHECK(L.work[0] / (L.work[0] + L.work[1]) == doctest::Approx(0.5).epsilon(0.02));
-}
