@@ -295,11 +295,9 @@ void PairList::rebuild(CandidatePairs& c, const Particles& p, int n_materials, c
     }
   }
   for (long k = k0; k < k1; ++k) {
+    const std::uint32_t a = c.i[k], b = c.j[k];
     law_lo = std::min(law_lo, law_index[k]);
     law_hi = std::max(law_hi, law_index[k]);
-  }
-  for (long k = k0; k < k1; ++k) {
-    const std::uint32_t a = c.i[k], b = c.j[k];
     std::uint32_t from = kNone;  // the old pair whose spring (a, b) carries, if any
     if (carry)
       for (std::uint32_t e = start[a]; e < start[a + 1]; ++e) {

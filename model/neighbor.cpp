@@ -24,7 +24,7 @@ constexpr std::size_t kSlack = 8;       // entries a scan may write past its las
 // a huge grid). A pour from a funnel spreads its spheres over a tall, mostly empty box: chapter-7 test 1's
 // 65k spheres span up to 18 cells of 2 r_max + skin each, and at the former 4 per particle the cells grew
 // 2.25x (11x the volume a finder scans; the search was 16 % of test 2's run). A grid costs ~1 ns a cell per
-// rebuild (its count array zeroed, summed and shifted), a scanned candidate about half that.
+// rebuild (its count array zeroed and summed), a scanned candidate about half that.
 constexpr double kCellsPerParticle = 32.0;
 
 }  // namespace

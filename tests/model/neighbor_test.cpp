@@ -24,6 +24,14 @@ void cloud(std::uint64_t seed, int n, const Vec3& size, double ratio, std::vecto
   }
 }
 
+// The pairs of c as a sorted set (the search's order is its scan's).
+std::vector<std::pair<std::uint32_t, std::uint32_t>> as_set(const CandidatePairs& c) {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> v;
+  for (std::size_t k = 0; k < c.i.size(); ++k) v.emplace_back(c.i[k], c.j[k]);
+  std::sort(v.begin(), v.end());
+  return v;
+}
+
 }  // namespace
 
 TEST_CASE("neighbor: the cell-list pairs equal brute force, for a 42:1 size ratio too") {
@@ -33,12 +41,6 @@ TEST_CASE("neighbor: the cell-list pairs equal brute force, for a 42:1 size rati
     std::vector<double> r;
     cloud(11, 600, {0.1, 0.1, 0.05}, ratio, x, r);
     const double skin = 0.4e-3;
-    auto as_set = [](const CandidatePairs& c) {
-      std::vector<std::pair<std::uint32_t, std::uint32_t>> v;
-      for (std::size_t k = 0; k < c.i.size(); ++k) v.emplace_back(c.i[k], c.j[k]);
-      std::sort(v.begin(), v.end());
-      return v;
-    };
     const auto fast = as_set(build_pairs(x, r, skin));
     const auto slow = as_set(brute_force_pairs(x, r, skin));
     CHECK(fast.size() > 0);
@@ -140,13 +142,5 @@ TEST_CASE("neighbor: a pour's tall, mostly empty box keeps cells of 2 r_max + sk
   CHECK(level.cell == doctest::Approx(2.0 * level.rmax + skin).epsilon(1e-12));
   const double cells = static_cast<double>(level.dim[0]) * level.dim[1] * level.dim[2];
   CHECK(cells > 8.0 * x.size());  // the case this test is for: a sparse box
-  // The pairs: those of the O(N^2) search, as sets (the order is the scan's).
-  const CandidatePairs ref = brute_force_pairs(x, r, skin);
-  auto sorted_pairs = [](const CandidatePairs& c) {
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> v;
-    for (std::size_t k = 0; k < c.i.size(); ++k) v.emplace_back(c.i[k], c.j[k]);
-    std::sort(v.begin(), v.end());
-    return v;
-  };
-  CHECK(sorted_pairs(pairs) == sorted_pairs(ref));
+  CHECK(as_set(pairs) == as_set(brute_force_pairs(x, r, skin)));  // the pairs of the O(N^2) search
 }
