@@ -31,7 +31,7 @@ namespace pastemix::model {
 namespace {
 
 // Bumped whenever a stored member is added, removed or reordered.
-constexpr char kMagic[] = "pastemix-checkpoint-v5";
+constexpr char kMagic[] = "pastemix-checkpoint-v6";
 
 // The members in one fixed order, for both directions: io(x) is put(x) or get(x).
 template <class IO>
@@ -54,7 +54,7 @@ struct CheckpointAccess {
     io(q.start), io(q.entry);
     auto& c = w.wall_contacts_;
     io(c.width), io(c.walls), io(c.start), io(c.near), io(c.history), io(c.touching);
-    io(w.x_at_rebuild_), io(w.escaped_);
+    io(w.x_at_rebuild_), io(w.shift_velocity_), io(w.escaped_);
     auto& field = std::get<FluidForces>(w.forces_).field;
     bool wet = field != nullptr;
     io(wet);

@@ -157,28 +157,17 @@ inline void World::kick_twice(long a, double h, bool rot, bool roll) {
   }
 }
 
-inline void World::drift_one(long a, double& d2, long& first_bad) {
+inline Vec3 World::drift_one(long a, long& first_bad) {
   p_.x[a] += p_.v[a] * cfg_.dt;
   const Vec3& x = p_.x[a];
   const Vec3 lo = cfg_.domain_min, hi = cfg_.domain_max;
   // NaN fails every comparison, so "not inside" also catches it.
   if (!(x.x >= lo.x && x.x <= hi.x && x.y >= lo.y && x.y <= hi.y && x.z >= lo.z && x.z <= hi.z))
     first_bad = std::min(first_bad, a);
-  d2 = std::max(d2, norm2(x - x_at_rebuild_[a]));
+  return x - x_at_rebuild_[a];
 }
 
 int World::threads_for(long n) const { return model::threads_for(n, cfg_.parallel_min_items); }
-
-bool World::rebuild_due(double moved2, double t) const {
-  // The lists stay valid while no particle has moved more than skin/2 since their build, and, for the wall
-  // candidates, particle plus wall motion stays below skin/2; a wall's motion is |v| (t - t_build); a
-  // removed wall needs no rebuild (it is skipped when inactive).
-  double wall_move = 0.0;
-  for (const Wall& wall : walls_)
-    wall_move = std::max(wall_move, norm(wall.displacement(t) - wall.displacement(t_at_rebuild_)));
-  const double half = 0.5 * cfg_.skin;
-  return moved2 > half * half || (wall_move > 0.0 && std::sqrt(moved2) + wall_move > half);
-}
 
 // What passes() hands its threads and what thread 0 hands back.
 struct World::Batch {
@@ -186,9 +175,10 @@ struct World::Batch {
   double h = 0.0;
   bool initial = false;
   int threads = 1;
-  double moved2 = 0.0;
+  Motion moved;
   long done = 0, drifts = 0;
-  double t_end = 0.0, d2_end = 0.0;
+  double t_end = 0.0;
+  Motion moved_end;
   long bad_end = std::numeric_limits<long>::max();
   int parity_end = 0;
   std::array<double, Profile::count> seconds{};  // s, thread 0's stages
@@ -201,7 +191,32 @@ struct World::Lane {
   bool rot = false, roll = false;
   const std::uint32_t* own = nullptr;  // null with one thread: every particle
   long n_own = 0;
-  double d2 = 0.0;
+  // This step's displacements (model/motion.h). refine: its drifts are measured against the common
+  // displacement u (m, World::common_shift) as well, into `lanes`; otherwise only their largest |dx|^2 is
+  // kept (a2max: the usual test, a few operations less per particle while the lists are far from due;
+  // World::refine_moves). `moved`: the single particles' (kick passes' members).
+  bool refine = false;
+  Vec3 u;
+  MotionLanes lanes;
+  double a2max = 0.0;
+  Motion moved;
+  // Refining: squared displacements a2[e] = |dx|^2, b2[e] = |dx - u|^2 of m particles (m <= kKickBlock; a2
+  // and b2 padded here with zeros).
+  void add_moves(double* a2, double* b2, int m) {
+    int padded = m;
+    for (; padded % MotionLanes::kLanes != 0; ++padded) a2[padded] = b2[padded] = 0.0;
+    lanes.add(a2, b2, padded);
+  }
+  // Particle displacement dx (m), one at a time (into `moved`).
+  void add_move(const Vec3& dx) {
+    const double a2 = norm2(dx);
+    moved.add(a2, refine ? norm2(dx - u) : a2);
+  }
+  Motion total() const {
+    Motion all = refine ? lanes.total() : Motion::within(a2max);
+    all.merge(moved);
+    return all;
+  }
   long bad = std::numeric_limits<long>::max();
   std::array<double, Profile::count>* seconds = nullptr;  // thread 0 only
   Clock::time_point lap;
@@ -216,14 +231,15 @@ struct World::Lane {
 };
 
 // The closing half kick of particle a, and with Then::kick_drift the next opening half kick and drift.
-inline void World::close_kick(Lane& lane, long a, Then then, double h) {
+inline Vec3 World::close_kick(Lane& lane, long a, Then then, double h) {
   if (then == Then::kick) {
     kick_one(a, h, lane.rot, lane.roll);
-    return;
+    return {};
   }
   kick_twice(a, h, lane.rot, lane.roll);
-  drift_one(a, lane.d2, lane.bad);
+  const Vec3 dx = drift_one(a, lane.bad);
   publish_ghost(lane, a);
+  return dx;
 }
 
 // The state the other threads read in the next pass (cross pairs), after particle a's drift.
@@ -285,6 +301,13 @@ template <class Law, class Roll>
 void World::close_kicks_rolling(const PassStep<Law, Roll>& s, Lane& lane, double h) {
   SpinBlock b;
   long idx[kKickBlock];
+  // The first stray particle and the largest move in registers: through `lane` (which the stores to the
+  // particle arrays may alias) every drift would load and store them. Refining, the block's squared
+  // displacements go to the lanes' Motions.
+  long bad = lane.bad;
+  double a2max = lane.a2max;
+  const Vec3 u = lane.u;
+  alignas(64) double a2[kKickBlock], b2[kKickBlock];
   for (long q = 0; q < lane.n_own;) {
     int m = 0;
     for (; q < lane.n_own && m < kKickBlock; ++q) idx[m++] = lane.particle(q);
@@ -312,13 +335,25 @@ void World::close_kicks_rolling(const PassStep<Law, Roll>& s, Lane& lane, double
       b.cap[e] = cap;
     }
     spin_block(b, m);
-    for (int e = 0; e < m; ++e) {
-      const long a = idx[e];
-      p_.omega[a] = {b.wx[e], b.wy[e], b.wz[e]};
-      drift_one(a, lane.d2, lane.bad);
-      publish_ghost(lane, a);
+    if (lane.refine) {
+      for (int e = 0; e < m; ++e) {
+        const long a = idx[e];
+        p_.omega[a] = {b.wx[e], b.wy[e], b.wz[e]};
+        const Vec3 dx = drift_one(a, bad);
+        a2[e] = norm2(dx), b2[e] = norm2(dx - u);
+        publish_ghost(lane, a);
+      }
+      lane.add_moves(a2, b2, m);
+    } else {
+      for (int e = 0; e < m; ++e) {
+        const long a = idx[e];
+        p_.omega[a] = {b.wx[e], b.wy[e], b.wz[e]};
+        a2max = std::max(a2max, norm2(drift_one(a, bad)));
+        publish_ghost(lane, a);
+      }
     }
   }
+  lane.bad = bad, lane.a2max = a2max;
 }
 
 template <class Law, class Roll>
@@ -350,10 +385,23 @@ void World::step_lane(const PassStep<Law, Roll>& s, Lane& lane, Then then, doubl
   if (blocked) {
     close_kicks_rolling(s, lane, h);
   } else {
-    for (long q = 0; q < lane.n_own; ++q) {
-      const long a = lane.particle(q);
-      if (!with_kick_pass(forces_, a, [](const auto&) {})) close_kick(lane, a, then, h);
+    double a2max = lane.a2max;
+    alignas(64) double a2[kKickBlock], b2[kKickBlock];
+    for (long q = 0; q < lane.n_own;) {
+      int m = 0;
+      for (; q < lane.n_own && m < kKickBlock; ++q) {
+        const long a = lane.particle(q);
+        if (with_kick_pass(forces_, a, [](const auto&) {})) continue;
+        const Vec3 dx = close_kick(lane, a, then, h);
+        if (!lane.refine) {
+          a2max = std::max(a2max, norm2(dx));
+          continue;
+        }
+        a2[m] = norm2(dx), b2[m] = norm2(dx - lane.u), ++m;
+      }
+      if (lane.refine) lane.add_moves(a2, b2, m);
     }
+    lane.a2max = a2max;
   }
   lane.time(Profile::kick);
   // The kick passes' particles, ascending, each by its owner (its operations are its own: any order of the
@@ -361,7 +409,7 @@ void World::step_lane(const PassStep<Law, Roll>& s, Lane& lane, Then then, doubl
   for_each_pass(forces_, [&](auto& pass) {
     if constexpr ((std::decay_t<decltype(pass)>::info.adds & adds::kick) != 0)
       if (pass.active() && !blocked) {
-        for (long a : pass.members(lane.me)) close_kick(lane, a, then, h);
+        for (long a : pass.members(lane.me)) lane.add_move(close_kick(lane, a, then, h));
         lane.time(pass.info.stage);
       }
   });
@@ -387,7 +435,7 @@ void World::run_lane(const std::vector<typename Law::Params>& laws,
   const int n_materials = static_cast<int>(materials_.size());
   double t = t_;  // every thread advances its own copy: the same additions, the same bits
   long done = 0, drifts = 0;
-  double d2_all = batch.moved2;
+  Motion moved_all = batch.moved;
   long bad_all = std::numeric_limits<long>::max();
   // This thread's busy time: its steps' work, without the waits at the step barriers (the load balance).
   auto since = Clock::now();
@@ -396,7 +444,9 @@ void World::run_lane(const std::vector<typename Law::Params>& laws,
     const StepContext ctx{t, cfg_.dt, n_materials};
     const PassStep<Law, Roll> s{laws, rolling, ctx, walls_, wall_contacts_, p_, pairs_, lane.me, lane.cur};
     const Then then = batch.initial ? Then::nothing : (done + 1 < batch.n ? Then::kick_drift : Then::kick);
-    lane.d2 = 0.0, lane.bad = std::numeric_limits<long>::max();
+    lane.moved = Motion{}, lane.lanes = MotionLanes{}, lane.a2max = 0.0, lane.bad = std::numeric_limits<long>::max();
+    lane.refine = refine_moves(moved_all);  // every thread alike: from the merged displacements
+    lane.u = common_shift(t + cfg_.dt);     // the drift moves the particles to t + dt
     step_lane(s, lane, then, batch.h);
     ++done;
     lane.cur ^= 1;  // the cross pairs' history just written
@@ -405,30 +455,30 @@ void World::run_lane(const std::vector<typename Law::Params>& laws,
     // results by the rebuild decision, which every thread takes alike.
     ++drifts;
     auto& slot = results_[done & 1];
-    slot[static_cast<std::size_t>(lane.me)] = {lane.d2, lane.bad};
+    slot[static_cast<std::size_t>(lane.me)] = {lane.total(), lane.bad};
     busy += std::chrono::duration<double>(Clock::now() - since).count();
     step_barrier_.wait(omp_get_num_threads());
     since = Clock::now();
     lane.time(Profile::wait);
-    d2_all = 0.0;
+    moved_all = Motion{};
     for (const auto& r : slot) {
-      d2_all = std::max(d2_all, r.d2);
+      moved_all.merge(r.moved);
       bad_all = std::min(bad_all, r.bad);
     }
     t += cfg_.dt;
-    if (bad_all != std::numeric_limits<long>::max() || rebuild_due(d2_all, t)) break;
+    if (bad_all != std::numeric_limits<long>::max() || rebuild_due(moved_all, t)) break;
   }
   busy += std::chrono::duration<double>(Clock::now() - since).count();
   if (batch.threads > 1) busy_[static_cast<std::size_t>(lane.me)].s += busy;
   if (master) {
     batch.done = done, batch.drifts = drifts, batch.t_end = t;
-    batch.d2_end = d2_all, batch.bad_end = bad_all, batch.parity_end = lane.cur;
+    batch.moved_end = moved_all, batch.bad_end = bad_all, batch.parity_end = lane.cur;
   }
 }
 
-long World::passes(long n, double h, bool initial, double& moved2) {
+long World::passes(long n, double h, bool initial, Motion& moved) {
   Batch batch;
-  batch.n = n, batch.h = h, batch.initial = initial, batch.moved2 = moved2;
+  batch.n = n, batch.h = h, batch.initial = initial, batch.moved = moved;
   batch.threads = threads_for(static_cast<long>(p_.size()));
   if (pairs_.threads != batch.threads || imbalanced(batch.threads)) partition(batch.threads, p_.x);
   if (batch.threads > 1) pairs_.fill_ghosts(p_);
@@ -466,29 +516,41 @@ long World::passes(long n, double h, bool initial, double& moved2) {
   pairs_.sync_cross();
   t_ = batch.t_end;
   steps_ += batch.drifts;
-  moved2 = batch.d2_end;
+  moved = batch.moved_end;
   if (batch.bad_end != std::numeric_limits<long>::max() && bad_index_ < 0) bad_index_ = batch.bad_end;
   for (int k : {Profile::contact_forces, Profile::walls, Profile::kick, Profile::fluid, Profile::wait})
     profile_.seconds[k] += batch.seconds[k];
   return batch.done;
 }
 
-// First half kick and drift in one loop, with the domain check and the displacement since the last
-// rebuild (max and min reductions: exact in any order, so any schedule gives the same result).
-double World::kick_drift(double h) {
+// First half kick and drift in one loop, with the domain check and the displacements since the last
+// rebuild (max, top-two and min reductions: exact in any order, so any schedule gives the same result).
+Motion World::kick_drift(double h) {
   const long n = static_cast<long>(p_.size());
   const bool rot = p_.has_rotation;
   const bool roll = kick_friction_;
-  double max_d2 = 0.0;
+  const Vec3 u = common_shift(t_ + cfg_.dt);  // the drift moves the particles to t + dt
+  Motion moved;
   long bad = std::numeric_limits<long>::max();
   const bool parallel = threads_for(n) > 1;
-#pragma omp parallel for schedule(static, 256) reduction(max : max_d2) reduction(min : bad) if (parallel)
-  for (long a = 0; a < n; ++a) {
-    kick_one(a, h, rot, roll);
-    drift_one(a, max_d2, bad);
+#pragma omp parallel if (parallel)
+  {
+    Motion mine;
+    long my_bad = std::numeric_limits<long>::max();
+#pragma omp for schedule(static, 256) nowait
+    for (long a = 0; a < n; ++a) {
+      kick_one(a, h, rot, roll);
+      const Vec3 dx = drift_one(a, my_bad);
+      mine.add(norm2(dx), norm2(dx - u));
+    }
+#pragma omp critical(pastemix_kick_drift)
+    {
+      moved.merge(mine);
+      bad = std::min(bad, my_bad);
+    }
   }
   if (bad != std::numeric_limits<long>::max() && bad_index_ < 0) bad_index_ = bad;
-  return max_d2;
+  return moved;
 }
 
 // A step: kick and drift (fused into the previous step's last pass, except at the start of a batch),
@@ -496,40 +558,40 @@ double World::kick_drift(double h) {
 void World::advance(long n) {
   if (n <= 0) return;
   const double h = 0.5 * cfg_.dt;
-  double moved2 = 0.0;
+  Motion moved;
   if (!started_) {
     {
       StageTimer timer{profile_.seconds[Profile::neighbor]};
       rebuild_neighbors();
     }
-    passes(1, h, true, moved2);
+    passes(1, h, true, moved);
     started_ = true;
   }
   {
     StageTimer timer{profile_.seconds[Profile::kick_drift]};
-    moved2 = kick_drift(h);
+    moved = kick_drift(h);
   }
   t_ += cfg_.dt;
   ++steps_;
   for (long left = n; left > 0;) {
-    if (bad_index_ >= 0) flagged(moved2);
-    if (rebuild_due(moved2, t_)) {
+    if (bad_index_ >= 0) flagged(moved);
+    if (rebuild_due(moved, t_)) {
       StageTimer timer{profile_.seconds[Profile::neighbor]};
       rebuild_neighbors();
     }
-    left -= passes(left, h, false, moved2);
+    left -= passes(left, h, false, moved);
   }
-  if (bad_index_ >= 0) flagged(moved2);
+  if (bad_index_ >= 0) flagged(moved);
 }
 
-void World::flagged(double& moved2) {
+void World::flagged(Motion& moved) {
   if (cfg_.on_exit == ExitRule::stop) {
     check();
     return;
   }
   check_particles(false);  // NaN / inf and energy blow-ups stop the run whatever on_exit says
   StageTimer timer{profile_.seconds[Profile::neighbor]};
-  remove_escaped(moved2);
+  remove_escaped(moved);
 }
 
 }  // namespace pastemix::model

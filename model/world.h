@@ -12,6 +12,7 @@
 #include "model/fluid/field.h"
 #include "model/forces/registry.h"
 #include "model/material.h"
+#include "model/motion.h"
 #include "model/parallel.h"
 #include "model/particles.h"
 #include "model/profile.h"
@@ -105,7 +106,9 @@ class World {
   void set_fluid(std::shared_ptr<fluid::FluidField> field) {
     auto& f = std::get<FluidForces>(forces_).field;
     f = std::move(field);
-    if (f) f->set_candidate_margin(cfg_.skin), f->set_step(cfg_.dt, cfg_.gravity);
+    // Margin 2 skin: the rebuild test keeps every particle's move below the skin (rebuild_due), the field's
+    // list needs it below half its margin.
+    if (f) f->set_candidate_margin(2.0 * cfg_.skin), f->set_step(cfg_.dt, cfg_.gravity);
   }
   const fluid::FluidField* fluid() const { return std::get<FluidForces>(forces_).field.get(); }
   // --- the moving paste's pass (forces/flow_forces.h): null without a dynamics = "flow" region. ---
@@ -126,11 +129,11 @@ class World {
   void check_particles(bool domain) const;
   [[noreturn]] void fail(std::size_t a, const std::string& cause) const;
   // A drift flagged a particle (bad_index_): check() with on_exit = stop; with remove, the health checks
-  // and then remove_escaped(). moved2: the displacement since the last rebuild (reset by a removal).
-  void flagged(double& moved2);
+  // and then remove_escaped(). moved: the displacements since the last rebuild (reset by a removal).
+  void flagged(Motion& moved);
   // Removes and records the particles outside the domain, renames the contact histories through the index
   // map and rebuilds the lists (RuntimeFailure past max_escaped_fraction).
-  void remove_escaped(double& moved2);
+  void remove_escaped(Motion& moved);
   void rebuild_neighbors();
   void rebuild_lists(int threads);
   // pairs_.partition with the passes' own cost per particle (partition_cost(a), where a pass has one).
@@ -149,9 +152,9 @@ class World {
   enum class Then { nothing, kick, kick_drift };
   // Force passes in one parallel region, at most `n` of them: per thread, one step() of its particles, then
   // (Then::kick_drift, all but the n-th pass) the one barrier of the step. Stops after a pass that leaves
-  // a rebuild due or a particle bad (moved2 = the largest squared displacement since the last rebuild).
+  // a rebuild due or a particle bad (moved: the displacements since the last rebuild, model/motion.h).
   // initial: one pass without kick (the forces at t = 0). Returns the number of passes.
-  long passes(long n, double h, bool initial, double& moved2);
+  long passes(long n, double h, bool initial, Motion& moved);
   struct Lane;  // one thread's part of passes() (world.cpp)
   struct Batch;  // what passes() hands its threads and gets back
   template <class Law, class Roll>
@@ -162,7 +165,8 @@ class World {
   template <class Law, class Roll>
   void step_lane(const PassStep<Law, Roll>& s, Lane& lane, Then then, double h);
   // The closing half kick of particle a (and the next opening half kick and drift, Then::kick_drift).
-  void close_kick(Lane& lane, long a, Then then, double h);
+  // Returns its displacement since the last rebuild (m; 0 without a drift).
+  Vec3 close_kick(Lane& lane, long a, Then then, double h);
   // The force passes and close_kick(Then::kick_drift) of every particle of the lane with the rolling friction,
   // in blocks (a kick pass's particles' velocities by the pass).
   template <class Law, class Roll>
@@ -170,15 +174,21 @@ class World {
   template <class Law, class Roll>
   void add_force_passes(const PassStep<Law, Roll>& s, const long* idx, int m);
   void publish_ghost(const Lane& lane, long a);
-  // Whether the lists must be rebuilt at time t, the particles having moved sqrt(moved2) since the last.
-  bool rebuild_due(double moved2, double t) const;
+  // Whether the lists must be rebuilt at time t, the particles having moved `moved` since the last.
+  bool rebuild_due(const Motion& moved, double t) const;
+  // The common displacement (m) the rebuild test measures the particles against at time t (model/motion.h).
+  Vec3 common_shift(double t) const { return shift_velocity_ * (t - t_at_rebuild_); }
+  // At a rebuild: shift_velocity_ from the particles' velocities.
+  void set_shift_velocity();
+  // Whether the next step's drifts are measured against the common displacement too (Lane::refine).
+  bool refine_moves(const Motion& moved) const;
   void kick_one(long a, double h, bool rot, bool roll);
   void kick_twice(long a, double h, bool rot, bool roll);
   void kick_velocity_twice(long a, double h);
-  // Drift of particle a by dt, its domain check and its squared displacement since the last rebuild.
-  void drift_one(long a, double& d2, long& first_bad);
-  // First half kick and drift; returns the largest squared displacement since the last rebuild (m2).
-  double kick_drift(double h);
+  // Drift of particle a by dt and its domain check; returns its displacement since the last rebuild (m).
+  Vec3 drift_one(long a, long& first_bad);
+  // First half kick and drift; returns the displacements since the last rebuild.
+  Motion kick_drift(double h);
 
   WorldConfig cfg_;
   std::vector<Material> materials_;
@@ -193,10 +203,10 @@ class World {
   Vec3 accel_;          // m/s2, the passes' body acceleration (gravity)
   NeighborSearch search_;
   CandidatePairs candidates_;          // the neighbour search's output, kept for its capacity
-  // Per thread and step parity: largest squared displacement and first bad particle of its block; padded
-  // to a cache line, read by every thread after the step's barrier.
+  // Per thread and step parity: the displacements and first bad particle of its block; padded to a cache
+  // line, read by every thread after the step's barrier.
   struct alignas(64) ThreadResult {
-    double d2 = 0.0;
+    Motion moved;
     long bad = 0;
   };
   std::vector<ThreadResult> results_[2];
@@ -213,6 +223,9 @@ class World {
   Profile profile_;
   double t_ = 0.0;
   double t_at_rebuild_ = 0.0;
+  // m/s: the velocity of the rebuild test's common displacement (model/motion.h): at each rebuild, the
+  // mean velocity of the particles at least half as fast as the fastest (a falling stream's).
+  Vec3 shift_velocity_;
   long steps_ = 0;
   long rebuilds_since_sort_ = 0;  // neighbour rebuilds since the last spatial sort (sort_every)
   bool started_ = false;

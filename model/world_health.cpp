@@ -26,7 +26,7 @@ std::string left_domain(const Vec3& lo, const Vec3& hi) {
 
 }  // namespace
 
-void World::remove_escaped(double& moved2) {
+void World::remove_escaped(Motion& moved) {
   const std::size_t n = p_.size();
   const Vec3 lo = cfg_.domain_min, hi = cfg_.domain_max;
   std::vector<char> gone(n, 0);
@@ -61,7 +61,7 @@ void World::remove_escaped(double& moved2) {
       if (pass.active()) pass.particles_removed(map, p_.size());
   });
   rebuild_neighbors();
-  moved2 = 0.0;
+  moved = Motion{};
 }
 
 void World::fail(std::size_t a, const std::string& cause) const {

@@ -29,10 +29,10 @@
 // spheres is multiplied by its cluster factor (collective.h: shadowing, footing capacity), recomputed every
 // collective_interval of simulated time in update(); the speed-dependent part stays the sphere's own.
 //
-// Cost outside the regions: with a candidate margin (World sets its Verlet skin), update() visits only the
-// candidates: particles whose sphere came within the margin of a region's box (bottom to surface) at the last
-// refresh. The World marks the list stale at each pair-list rebuild, i.e. before any particle has moved more
-// than half the skin, and update() refreshes it itself when a surface has risen by more than half the margin,
+// Cost outside the regions: with a candidate margin (World sets twice its Verlet skin), update() visits only
+// the candidates: particles whose sphere came within the margin of a region's box (bottom to surface) at the
+// last refresh. The World marks the list stale at each pair-list rebuild, i.e. before any particle has moved
+// more than half the margin, and update() refreshes it itself when a surface has risen by more than half the margin,
 // so no particle can enter a region unseen. A particle far from every region then costs one flag read per
 // step (in the kick). Margin 0 (the default, for direct users of FluidField): every particle every step.
 //

@@ -53,7 +53,8 @@ struct FluidForces {
   // After the team: the last step's surface rise, the merged member list (members(), the checkpoint).
   void end_batch() { field->end_batch(); }
 
-  // The pair list was rebuilt: no particle has moved skin/2 since, the candidates are refreshed.
+  // The pair list was rebuilt (before any particle had moved the skin, half the field's margin): the
+  // candidates are refreshed.
   void lists_rebuilt() { field->mark_stale(); }
   // Particles were removed (outflow): the field's per-particle arrays are anew at the next update.
   void particles_removed() { field->particles_removed(); }

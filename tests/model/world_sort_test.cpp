@@ -33,12 +33,7 @@ std::string heap_scene(const std::string& rolling, long sort_every) {
              "[contact]\nlaw = \"hertz_mindlin\"\nrolling = \"{}\"\n[neighbor]\nskin = 1e-3\nsort_every = {}\n",
              rolling, sort_every) +
          model::test::material("rock", 2760, 4.68e7, 0.19) + model::test::interaction("rock/rock", 0.79, 0.466, 0.15) +
-         "[[wall]]\nname = \"floor\"\ntype = \"plane\"\nmaterial = \"rock\"\npoint = [0, 0, 0]\nnormal = [0, 0, 1]\n"
-         "[[wall]]\nname = \"tube\"\ntype = \"cylinder\"\nmaterial = \"rock\"\ncenter = [0, 0]\nradius = 0.03\n"
-         "z_min = 0\nz_max = 0.2\n"
-         "[[factory]]\nmaterial = \"rock\"\nmass = 0.12\nshape = \"cylinder\"\ncenter = [0, 0]\nradius = 0.028\n"
-         "z_min = 0.003\nz_max = 0.12\nvelocity = [0, 0, -1.5]\n[[factory.psd]]\nd_min = 4e-3\nd_max = 6e-3\n"
-         "fraction = 1.0\n";
+         model::test::kThrownHeap;
 }
 
 struct End {
