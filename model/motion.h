@@ -28,6 +28,12 @@
 
 namespace pastemix::model {
 
+// Keeps the two largest values seen in (first, second), first >= second (Motion and each lane of MotionLanes).
+inline void keep_top_two(double& first, double& second, double v) {
+  second = std::max(second, std::min(first, v));
+  first = std::max(first, v);
+}
+
 struct Motion {
   // Squared displacements (m^2) since the build: the two largest a^2 of the still particles, the two largest
   // b^2 of the moving ones, the largest a^2 of the moving ones and the largest b^2 of the still ones. All
@@ -44,17 +50,17 @@ struct Motion {
   // sphere falls in is unpredictable where a stream meets a pile.
   void add(double a2, double b2) {
     const bool still = a2 <= b2;
-    top_two(still1, still2, still ? a2 : 0.0);
-    top_two(moving1, moving2, still ? 0.0 : b2);
+    keep_top_two(still1, still2, still ? a2 : 0.0);
+    keep_top_two(moving1, moving2, still ? 0.0 : b2);
     moving_a = std::max(moving_a, still ? 0.0 : a2);
     still_b = std::max(still_b, still ? b2 : 0.0);
   }
   // Another set of particles (a thread's): max and top-two merges are exact in any order.
   void merge(const Motion& o) {
-    top_two(still1, still2, o.still1);
-    top_two(still1, still2, o.still2);
-    top_two(moving1, moving2, o.moving1);
-    top_two(moving1, moving2, o.moving2);
+    keep_top_two(still1, still2, o.still1);
+    keep_top_two(still1, still2, o.still2);
+    keep_top_two(moving1, moving2, o.moving1);
+    keep_top_two(moving1, moving2, o.moving2);
     moving_a = std::max(moving_a, o.moving_a);
     still_b = std::max(still_b, o.still_b);
   }
@@ -66,13 +72,6 @@ struct Motion {
     const double m1 = std::sqrt(moving1), m2 = std::sqrt(moving2);
     const double across = std::min(s1 + std::sqrt(moving_a), std::sqrt(still_b) + m1);
     return std::max({s1 + s2, m1 + m2, across});
-  }
-
- private:
-  // Keeps the two largest values seen in (first, second), first >= second.
-  static void top_two(double& first, double& second, double v) {
-    second = std::max(second, std::min(first, v));
-    first = std::max(first, v);
   }
 };
 
@@ -92,10 +91,8 @@ struct MotionLanes {
         const double a = a2[c + l], b = b2[c + l];
         const bool still = a <= b;
         const double s = still ? a : 0.0, m = still ? 0.0 : b;
-        still2[l] = std::max(still2[l], std::min(still1[l], s));
-        still1[l] = std::max(still1[l], s);
-        moving2[l] = std::max(moving2[l], std::min(moving1[l], m));
-        moving1[l] = std::max(moving1[l], m);
+        keep_top_two(still1[l], still2[l], s);
+        keep_top_two(moving1[l], moving2[l], m);
         moving_a[l] = std::max(moving_a[l], still ? 0.0 : a);
         still_b[l] = std::max(still_b[l], still ? b : 0.0);
       }
