@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "model/contacts.h"
 
+#include "model/pair_filter.h"
 
 #include <algorithm>
 #include <stdexcept>
@@ -17,10 +18,7 @@ namespace {
 // the candidates of a settled bed are not touching; a mixed loop mispredicted the "touching?" branch.
 constexpr long kChunk = 256;
 
-// The separation vectors x_j - x_i (m) of a chunk's touching candidates, one array per axis.
-struct Separations {
-  double x[kChunk], y[kChunk], z[kChunk];
-};
+using Separations = model::Separations<kChunk>;
 
 // Pairs ks[q0 .. q1) (Part = true: pair indices of this thread's list; false: ks = null, pairs q0 .. q1
 // of the whole list, one thread owning every particle). Forces are added to the owned particles
@@ -42,7 +40,8 @@ void batch_chunk(const std::vector<typename Law::Params>& table, const std::vect
     for (int e = 0; e < Law::kBatch; ++e) Law::load_params(B, e, table[law0]);
   for (long q0 = 0; q0 < m; q0 += Law::kBatch) {
     const int nb = static_cast<int>(std::min<long>(Law::kBatch, m - q0));
-    for (int e = 0; e < nb; ++e) {
+    // Lane e: pair idx[q0 + e]'s state (a cross pair's from the ghost copies and its history buffer).
+    const auto stage = [&](int e) {
       const long q = q0 + e;
       const std::uint32_t k = idx[q] & ~PairList::kCrossBit;
       const std::uint32_t a = L.i[k], b = L.j[k];
@@ -51,7 +50,6 @@ void batch_chunk(const std::vector<typename Law::Params>& table, const std::vect
       B.rsum[e] = rsums[q];
       B.ra[e] = p.radius[a], B.rb[e] = p.radius[b];
       B.r_star[e] = L.r_star[k], B.m_star[e] = L.m_star[k];
-      if (law0 == PairList::kNone) Law::load_params(B, e, table[L.law_index[k]]);
       const bool cross_pair = Part && (idx[q] & PairList::kCrossBit) != 0;
       Vec3 va, vb, wa, wb;
       const double* h;
@@ -66,7 +64,16 @@ void batch_chunk(const std::vector<typename Law::Params>& table, const std::vect
       B.vax[e] = va.x, B.vay[e] = va.y, B.vaz[e] = va.z, B.vbx[e] = vb.x, B.vby[e] = vb.y, B.vbz[e] = vb.z;
       B.wax[e] = wa.x, B.way[e] = wa.y, B.waz[e] = wa.z, B.wbx[e] = wb.x, B.wby[e] = wb.y, B.wbz[e] = wb.z;
       B.hx[e] = h[0], B.hy[e] = h[1], B.hz[e] = h[2];
-    }
+    };
+    int l0 = 0;
+    // Eight lanes at a time by gathers where the build has AVX-512 and none of the eight crosses
+    // (model/pair_filter.h: stage8).
+    for (; l0 + 8 <= nb; l0 += 8)
+      if (!stage8(B, l0, idx + q0 + l0, sep, sep2, rsums, q0 + l0, p, L))
+        for (int l = l0; l < l0 + 8; ++l) stage(l);
+    for (; l0 < nb; ++l0) stage(l0);
+    if (law0 == PairList::kNone)
+      for (int l = 0; l < nb; ++l) Law::load_params(B, l, table[L.law_index[idx[q0 + l] & ~PairList::kCrossBit]]);
     Law::force_batch(B, nb, ctx.dt);
     for (int e = 0; e < nb; ++e) {
       const std::uint32_t k = idx[q0 + e] & ~PairList::kCrossBit;
@@ -107,42 +114,13 @@ void pair_chunk(const std::vector<typename Law::Params>& table, const std::vecto
   constexpr bool spring_roll = Roll::history_size > 0;
   const int w = L.width;
   const std::size_t ws = static_cast<std::size_t>(w);
-  std::uint32_t idx[kChunk];
-  Separations sep;  // not Vec3[kChunk]: its zero-initialisation was a 6 kB memset per chunk (~2 % of the bed)
-  double sep2[kChunk], rsums[kChunk];
-  long m = 0;
-  for (long q = q0; q < q1; ++q) {
-    const std::uint32_t entry = Part ? ks[q] : static_cast<std::uint32_t>(q);
-    const std::uint32_t k = entry & ~PairList::kCrossBit;
-    const std::uint32_t a = L.i[k], b = L.j[k];
-    // A cross pair reads the other thread's particle from its ghost copy (that thread may already be
-    // kicking and drifting the original).
-    const bool cross_pair = Part && (entry & PairList::kCrossBit) != 0;
-    const Vec3 d = cross_pair ? L.state(b, cur).x - L.state(a, cur).x : p.x[b] - p.x[a];
-    const double rsum = L.rsum[k];
-    const double dist2 = norm2(d);
-    const bool touch = !(dist2 >= rsum * rsum);
-    idx[m] = entry;
-    sep.x[m] = d.x, sep.y[m] = d.y, sep.z[m] = d.z;
-    sep2[m] = dist2;
-    rsums[m] = rsum;
-    m += touch;
-    // Not touching: forget the springs (a new contact starts from zero displacement). Branch only on the
-    // rare contact that just opened; "touching?" itself is unpredictable.
-    if (cross_pair) {
-      if (L.owner[a] == me) {
-        if (!touch) std::fill_n(&L.cross_hist[cur ^ 1][L.cross[k] * ws], w, 0.0);
-        L.touching[k] = touch;
-      }
-    } else {
-      // One branch, on "just opened" (was touching, is not): rare and predictable. Written as `!touch &&
-      // touching[k]`, the compiler branched on `touch` first, a mispredicted branch on ~40 % of a settled
-      // bed's candidates (issue 19).
-      const std::uint32_t was = L.touching[k];
-      L.touching[k] = touch;
-      if ((was & static_cast<std::uint32_t>(!touch)) != 0) std::fill_n(&L.history[k * ws], w, 0.0);
-    }
-  }
+  // The filter (model/pair_filter.h): the chunk's touching pairs, their separations and springs' state.
+  FilterOut<kChunk> out;
+  PairFilter<Part>{p, L, ks, me, cur}.run(q0, q1, out);
+  const std::uint32_t* idx = out.idx;
+  const Separations& sep = out.sep;
+  const double *sep2 = out.sep2, *rsums = out.rsums;
+  const long m = out.m;
   if constexpr (requires { Law::force_batch; }) {
     if (w == Law::history_size && rot && !spring_roll) {
       batch_chunk<Law, Roll, Part>(table, rolling, ctx, p, L, idx, sep, sep2, rsums, m, me, cur);

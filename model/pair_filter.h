@@ -1,0 +1,225 @@
+// SPDX-License-Identifier: MIT
+// The pair pass's filter and staging (model/contacts.cpp). The filter finds which candidate pairs of a chunk
+// touch: it keeps each touching pair's list entry, separation x_j - x_i (m), squared distance (m^2) and
+// R_i + R_j (m) in pair order, sets the pairs' touching flags and zeroes the springs of the contacts that
+// just opened. stage8 loads eight touching pairs' state into a batch kernel's lanes. With AVX-512 both take
+// eight pairs at a time (gathers, one compare, compressed stores); one at a time, the filter was about half
+// of the pair pass's samples in chapter-7 test 1 (perf, 2 threads; three candidates in four do not touch)
+// and the loads of both spheres' radii, velocities and spins a third of the settled bed's. Interleaved A/B
+// against the one-at-a-time build (issue 19, bench/README.md): bench bed, 1 thread, contact stage 1.53 ->
+// 1.16 s. Both forms give the same bits: the same subtractions, squares and sums per pair, the same entries in
+// the same order (tests/model/pair_filter_test.cpp, scripts/bitwise_check.sh).
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+
+#include "model/contacts.h"
+
+#if defined(__AVX512F__) && defined(__AVX512VL__)
+#include <immintrin.h>
+#endif
+
+namespace pastemix::model {
+
+// The separation vectors x_j - x_i (m) of a chunk's touching candidates, one array per axis (not
+// Vec3[kChunk]: its zero-initialisation was a 6 kB memset per chunk, ~2 % of the bed).
+template <long N>
+struct Separations {
+  double x[N], y[N], z[N];
+};
+
+// Entries of the chunk's touching pairs, in pair order (out), kept by PairFilter.
+template <long N>
+struct FilterOut {
+  std::uint32_t idx[N];
+  Separations<N> sep;
+  double sep2[N], rsums[N];
+  long m = 0;
+};
+
+// Part = true: the entries are ks[q] (pair index, kCrossBit for a cross pair, whose positions come from the
+// ghost copies and whose touching flag and spring only the owner of i writes); false: pair q itself.
+template <bool Part>
+struct PairFilter {
+  const Particles& p;
+  PairList& L;
+  const std::uint32_t* ks;
+  int me, cur;
+
+  std::uint32_t entry(long q) const { return Part ? ks[q] : static_cast<std::uint32_t>(q); }
+
+  // One candidate (the reference form).
+  template <long N>
+  void one(long q, FilterOut<N>& o) const {
+    const std::uint32_t e = entry(q);
+    const std::uint32_t k = e & ~PairList::kCrossBit;
+    const std::uint32_t a = L.i[k], b = L.j[k];
+    // A cross pair reads the other thread's particle from its ghost copy (that thread may already be
+    // kicking and drifting the original).
+    const bool cross_pair = Part && (e & PairList::kCrossBit) != 0;
+    const Vec3 d = cross_pair ? L.state(b, cur).x - L.state(a, cur).x : p.x[b] - p.x[a];
+    const double rsum = L.rsum[k];
+    const double dist2 = norm2(d);
+    const bool touch = !(dist2 >= rsum * rsum);
+    const long m = o.m;
+    o.idx[m] = e;
+    o.sep.x[m] = d.x, o.sep.y[m] = d.y, o.sep.z[m] = d.z;
+    o.sep2[m] = dist2;
+    o.rsums[m] = rsum;
+    o.m = m + touch;
+    // Not touching: forget the springs (a new contact starts from zero displacement). Branch only on the
+    // rare contact that just opened; "touching?" itself is unpredictable.
+    const std::size_t ws = static_cast<std::size_t>(L.width);
+    if (cross_pair) {
+      if (L.owner[a] == me) {
+        if (!touch) std::fill_n(&L.cross_hist[cur ^ 1][L.cross[k] * ws], L.width, 0.0);
+        L.touching[k] = touch;
+      }
+    } else {
+      // One branch, on "just opened" (was touching, is not): rare and predictable. Written as `!touch &&
+      // touching[k]`, the compiler branched on `touch` first, a mispredicted branch on ~40 % of a settled
+      // bed's candidates (issue 19).
+      const std::uint32_t was = L.touching[k];
+      L.touching[k] = touch;
+      if ((was & static_cast<std::uint32_t>(!touch)) != 0) std::fill_n(&L.history[k * ws], L.width, 0.0);
+    }
+  }
+
+  // Candidates q0 .. q1 (at most N) into o, one at a time.
+  template <long N>
+  void scalar(long q0, long q1, FilterOut<N>& o) const {
+    for (long q = q0; q < q1; ++q) one(q, o);
+  }
+
+  // The same, eight at a time where the build has AVX-512 (a group with a cross pair goes one at a time).
+  template <long N>
+  void run(long q0, long q1, FilterOut<N>& o) const {
+    long q = q0;
+#if defined(__AVX512F__) && defined(__AVX512VL__)
+    static_assert(sizeof(Vec3) == 3 * sizeof(double));
+    const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7), three = _mm256_set1_epi32(3);
+    const double* X = p.x.empty() ? nullptr : &p.x[0].x;
+    // Gathers of all eight lanes (the masked forms: the plain ones start from an undefined register).
+    const auto gather_pd = [](__m256i at, const double* base) {
+      return _mm512_mask_i32gather_pd(_mm512_setzero_pd(), 0xff, at, base, 8);
+    };
+    const auto gather_u32 = [](__m256i at, const std::uint32_t* base) {
+      return _mm256_mmask_i32gather_epi32(_mm256_setzero_si256(), 0xff, at, base, 4);
+    };
+    for (; q + 8 <= q1; q += 8) {
+      __m256i e, a, b;
+      __m512d rsum;
+      if constexpr (Part) {
+        e = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(ks + q));
+        if (_mm256_movemask_ps(_mm256_castsi256_ps(e)) != 0) {  // kCrossBit is the sign bit
+          for (long r = q; r < q + 8; ++r) one(r, o);
+          continue;
+        }
+        a = gather_u32(e, L.i.data());
+        b = gather_u32(e, L.j.data());
+        rsum = gather_pd(e, L.rsum.data());
+      } else {
+        e = _mm256_add_epi32(_mm256_set1_epi32(static_cast<int>(q)), lane);
+        a = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(L.i.data() + q));
+        b = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(L.j.data() + q));
+        rsum = _mm512_loadu_pd(L.rsum.data() + q);
+      }
+      const __m256i a3 = _mm256_mullo_epi32(a, three), b3 = _mm256_mullo_epi32(b, three);
+      const __m512d dx = _mm512_sub_pd(gather_pd(b3, X), gather_pd(a3, X));
+      const __m512d dy = _mm512_sub_pd(gather_pd(b3, X + 1), gather_pd(a3, X + 1));
+      const __m512d dz = _mm512_sub_pd(gather_pd(b3, X + 2), gather_pd(a3, X + 2));
+      // norm2: (dx dx + dy dy) + dz dz, no fused multiply-add (the build's -ffp-contract=off).
+      const __m512d dist2 =
+          _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy)), _mm512_mul_pd(dz, dz));
+      // touch = !(dist2 >= rsum^2): "not greater or equal", true for NaN as the scalar form.
+      const __mmask8 touch = _mm512_cmp_pd_mask(dist2, _mm512_mul_pd(rsum, rsum), _CMP_NGE_UQ);
+      const long m = o.m;
+      _mm256_mask_compressstoreu_epi32(o.idx + m, touch, e);
+      _mm512_mask_compressstoreu_pd(o.sep.x + m, touch, dx);
+      _mm512_mask_compressstoreu_pd(o.sep.y + m, touch, dy);
+      _mm512_mask_compressstoreu_pd(o.sep.z + m, touch, dz);
+      _mm512_mask_compressstoreu_pd(o.sep2 + m, touch, dist2);
+      _mm512_mask_compressstoreu_pd(o.rsums + m, touch, rsum);
+      o.m = m + __builtin_popcount(touch);
+      // The touching flags (0/1) of the eight pairs; their previous values give the contacts just opened.
+      const __m256i now = _mm256_maskz_mov_epi32(touch, _mm256_set1_epi32(1));
+      __m256i was;
+      std::uint32_t* T = L.touching.data();
+      const std::uint32_t k0 = static_cast<std::uint32_t>(_mm256_extract_epi32(e, 0));
+      if (!Part || static_cast<std::uint32_t>(_mm256_extract_epi32(e, 7)) == k0 + 7) {  // ascending: k0 .. k0 + 7
+        was = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(T + k0));
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(T + k0), now);
+      } else {
+        was = gather_u32(e, T);
+        _mm256_i32scatter_epi32(reinterpret_cast<int*>(T), e, now, 4);
+      }
+      const unsigned opened = _mm256_test_epi32_mask(was, was) & ~static_cast<unsigned>(touch) & 0xffu;
+      if (opened != 0) {
+        alignas(32) std::uint32_t ks8[8];
+        _mm256_store_si256(reinterpret_cast<__m256i*>(ks8), e);
+        const std::size_t ws = static_cast<std::size_t>(L.width);
+        for (int l = 0; l < 8; ++l)
+          if ((opened >> l) & 1u) std::fill_n(&L.history[ks8[l] * ws], L.width, 0.0);
+      }
+    }
+#endif
+    scalar(q, q1, o);
+  }
+};
+
+// The pair pass's staging of eight touching pairs (entries e8[0 .. 8), chunk positions q .. q + 7 of the
+// filter's arrays) into lanes l0 .. l0 + 7 of a batch kernel's input B (a Law::Batch with HertzMindlin's
+// fields): separations, radii, R*, m*, both velocities and spins, the spring. Gathers, one store per field
+// instead of eight. False (nothing staged) where the build has no AVX-512 or one of the pairs crosses two
+// threads (its state is in the ghost copies): the caller stages them one at a time.
+template <class Batch, long N>
+bool stage8(Batch& B, int l0, const std::uint32_t* e8, const Separations<N>& sep, const double* sep2,
+            const double* rsums, long q, const Particles& p, const PairList& L) {
+#if defined(__AVX512F__) && defined(__AVX512VL__)
+  const __m256i k = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(e8));
+  if (_mm256_movemask_ps(_mm256_castsi256_ps(k)) != 0) return false;  // kCrossBit is the sign bit
+  const auto gather_pd = [](__m256i at, const double* base) {
+    return _mm512_mask_i32gather_pd(_mm512_setzero_pd(), 0xff, at, base, 8);
+  };
+  const auto gather_u32 = [](__m256i at, const std::uint32_t* base) {
+    return _mm256_mmask_i32gather_epi32(_mm256_setzero_si256(), 0xff, at, base, 4);
+  };
+  const __m256i three = _mm256_set1_epi32(3);
+  const __m256i a = gather_u32(k, L.i.data()), b = gather_u32(k, L.j.data());
+  const __m256i a3 = _mm256_mullo_epi32(a, three), b3 = _mm256_mullo_epi32(b, three), k3 = _mm256_mullo_epi32(k, three);
+  _mm512_storeu_pd(B.dx + l0, _mm512_loadu_pd(sep.x + q));
+  _mm512_storeu_pd(B.dy + l0, _mm512_loadu_pd(sep.y + q));
+  _mm512_storeu_pd(B.dz + l0, _mm512_loadu_pd(sep.z + q));
+  _mm512_storeu_pd(B.dist2 + l0, _mm512_loadu_pd(sep2 + q));
+  _mm512_storeu_pd(B.rsum + l0, _mm512_loadu_pd(rsums + q));
+  _mm512_storeu_pd(B.ra + l0, gather_pd(a, p.radius.data()));
+  _mm512_storeu_pd(B.rb + l0, gather_pd(b, p.radius.data()));
+  _mm512_storeu_pd(B.r_star + l0, gather_pd(k, L.r_star.data()));
+  _mm512_storeu_pd(B.m_star + l0, gather_pd(k, L.m_star.data()));
+  const double* V = &p.v[0].x;
+  const double* W = &p.omega[0].x;
+  const double* H = L.history.data();
+  _mm512_storeu_pd(B.vax + l0, gather_pd(a3, V));
+  _mm512_storeu_pd(B.vay + l0, gather_pd(a3, V + 1));
+  _mm512_storeu_pd(B.vaz + l0, gather_pd(a3, V + 2));
+  _mm512_storeu_pd(B.vbx + l0, gather_pd(b3, V));
+  _mm512_storeu_pd(B.vby + l0, gather_pd(b3, V + 1));
+  _mm512_storeu_pd(B.vbz + l0, gather_pd(b3, V + 2));
+  _mm512_storeu_pd(B.wax + l0, gather_pd(a3, W));
+  _mm512_storeu_pd(B.way + l0, gather_pd(a3, W + 1));
+  _mm512_storeu_pd(B.waz + l0, gather_pd(a3, W + 2));
+  _mm512_storeu_pd(B.wbx + l0, gather_pd(b3, W));
+  _mm512_storeu_pd(B.wby + l0, gather_pd(b3, W + 1));
+  _mm512_storeu_pd(B.wbz + l0, gather_pd(b3, W + 2));
+  _mm512_storeu_pd(B.hx + l0, gather_pd(k3, H));
+  _mm512_storeu_pd(B.hy + l0, gather_pd(k3, H + 1));
+  _mm512_storeu_pd(B.hz + l0, gather_pd(k3, H + 2));
+  return true;
+#else
+  (void)B, (void)l0, (void)e8, (void)sep, (void)sep2, (void)rsums, (void)q, (void)p, (void)L;
+  return false;
+#endif
+}
+
+}  // namespace pastemix::model
