@@ -195,12 +195,19 @@ void pair_pass(const std::vector<typename Law::Params>& table, const std::vector
                const StepContext& ctx, Particles& p, PairList& L, int thread, int parity) {
   const bool part = L.threads > 1;
   if (part) {
-    for (std::uint32_t a : L.own[thread]) {
-      p.f[a] = Vec3{};
+    // Run by run of consecutive indices: after a spatial sort a thread's particles are a few long runs,
+    // cleared as blocks (one particle at a time, the three scattered stores were ~5 % of the 2-thread pour).
+    const auto& own = L.own[thread];
+    for (std::size_t s = 0; s < own.size();) {
+      std::size_t e = s + 1;
+      while (e < own.size() && own[e] == own[e - 1] + 1) ++e;
+      const std::ptrdiff_t a0 = own[s], len = static_cast<std::ptrdiff_t>(e - s);
+      std::fill_n(p.f.begin() + a0, len, Vec3{});
       if (p.has_rotation) {
-        p.torque[a] = Vec3{};
-        p.rolling_capacity[a] = 0.0;
+        std::fill_n(p.torque.begin() + a0, len, Vec3{});
+        std::fill_n(p.rolling_capacity.begin() + a0, len, 0.0);
       }
+      s = e;
     }
   } else {
     std::fill(p.f.begin(), p.f.end(), Vec3{});
@@ -433,10 +440,10 @@ void PairList::partition(int n_threads, const std::vector<Vec3>& x, const std::v
   }
   for (std::size_t k = 0; k < n; ++k) {
     const int oi = owner[i[k]], oj = owner[j[k]];
-    const auto entry = static_cast<std::uint32_t>(k) | (oj != oi ? kCrossBit : 0u);
-    mine[static_cast<std::size_t>(oi)].push_back(entry);
+    const auto tagged = static_cast<std::uint32_t>(k) | (oj != oi ? kCrossBit : 0u);
+    mine[static_cast<std::size_t>(oi)].push_back(tagged);
     if (oj != oi) {
-      mine[static_cast<std::size_t>(oj)].push_back(entry);
+      mine[static_cast<std::size_t>(oj)].push_back(tagged);
       cross[k] = static_cast<std::uint32_t>(cross_pairs.size());
       cross_pairs.push_back(static_cast<std::uint32_t>(k));
     }
