@@ -52,6 +52,7 @@
 #include <fmt/format.h>
 
 #include "base/error.h"
+#include "model/kick_block.h"
 #include "model/parallel.h"
 
 #include <omp.h>
@@ -101,31 +102,6 @@ inline void World::kick_one(long a, double h, bool rot, bool roll) {
   }
 }
 
-namespace {
-
-// One sphere's closing and next opening half kicks of omega under the non-reversing rolling friction (w + dw,
-// then |w| shrinks by stop = h M / I (rad/s) or w stops), or w + dw + dw without a rolling contact (held =
-// false: M = 0). Both sides of each choice are computed and one selected, so that spin_block's loop over a
-// block of spheres is one vector loop (no trapping math in this target): one sphere at a time chained two
-// square roots and two divisions through unpredictable branches (about 40 % of the pour's kick stage, issue 19).
-inline void spin_twice(double& wx, double& wy, double& wz, double dx, double dy, double dz, double stop, bool held) {
-  const double fx = (wx + dx) + dx, fy = (wy + dy) + dy, fz = (wz + dz) + dz;
-  double x = wx, y = wy, z = wz;
-  for (int k = 0; k < 2; ++k) {
-    x = x + dx, y = y + dy, z = z + dz;
-    const double len = std::sqrt(x * x + y * y + z * z);
-    const double keep = 1.0 - stop / len;
-    const bool halt = len <= stop;
-    x = halt ? 0.0 : x * keep;
-    y = halt ? 0.0 : y * keep;
-    z = halt ? 0.0 : z * keep;
-  }
-  wx = held ? x : fx;
-  wy = held ? y : fy;
-  wz = held ? z : fz;
-}
-
-}  // namespace
 
 // v after the closing half kick of a step and the opening half kick of the next (the same force, unclaimed a).
 inline void World::kick_velocity_twice(long a, double h) {
@@ -150,7 +126,7 @@ inline void World::kick_twice(long a, double h, bool rot, bool roll) {
     Vec3 w = p_.omega[a];
     const double cap = p_.rolling_capacity[a];  // N.m
     if (roll)
-      spin_twice(w.x, w.y, w.z, dw.x, dw.y, dw.z, h * cap * p_.inv_inertia[a], cap > 0.0);
+      kick::spin_twice(w.x, w.y, w.z, dw.x, dw.y, dw.z, h * cap * p_.inv_inertia[a], cap > 0.0);
     else
       w = (w + dw) + dw;
     p_.omega[a] = w;
@@ -200,7 +176,7 @@ struct World::Lane {
   MotionLanes lanes;
   double a2max = 0.0;
   Motion moved;
-  // Refining: squared displacements a2[e] = |dx|^2, b2[e] = |dx - u|^2 of m particles (m <= kKickBlock; a2
+  // Refining: squared displacements a2[e] = |dx|^2, b2[e] = |dx - u|^2 of m particles (m <= kick::kBlock; a2
   // and b2 padded here with zeros).
   void add_moves(double* a2, double* b2, int m) {
     int padded = m;
@@ -248,23 +224,6 @@ inline void World::publish_ghost(const Lane& lane, long a) {
     pairs_.ghost[lane.cur ^ 1][pairs_.ghost_of[a]] = {p_.x[a], p_.v[a], lane.rot ? p_.omega[a] : Vec3{}};
 }
 
-namespace {
-
-constexpr int kKickBlock = 64;  // particles per block of close_kicks_rolling (its arrays stay in L1)
-
-// Spins of a block of particles, one lane each: omega (in and out), the half kick's dw = h tau / I, the
-// friction's stop = h M / I (rad/s) and the rolling capacity M (N.m).
-struct SpinBlock {
-  double wx[kKickBlock], wy[kKickBlock], wz[kKickBlock], dx[kKickBlock], dy[kKickBlock], dz[kKickBlock];
-  double stop[kKickBlock], cap[kKickBlock];
-};
-
-// Lanes 0 .. m-1: spin_twice of each (the block's spheres in one vector loop).
-void spin_block(SpinBlock& b, int m) {
-  for (int e = 0; e < m; ++e) spin_twice(b.wx[e], b.wy[e], b.wz[e], b.dx[e], b.dy[e], b.dz[e], b.stop[e], b.cap[e] > 0.0);
-}
-
-}  // namespace
 
 // The force passes' kinds of addition (those run per particle after its pair sum, before its kick).
 constexpr auto kForceAdds = adds::force | adds::torque | adds::rolling_capacity;
@@ -293,30 +252,45 @@ void World::add_force_passes(const PassStep<Law, Roll>& s, const long* idx, int 
 }
 
 // The force passes, then close_kick(Then::kick_drift), of every particle of the lane, with rotation and the
-// rolling friction on, kKickBlock particles at a time: the velocities kicked as kick_twice does (a kick pass's
+// rolling friction on, kick::kBlock particles at a time: the velocities kicked as kick_twice does (a kick pass's
 // particle by the pass), the block's spins by spin_block (spin_twice), then the spins stored, the drifts and the
 // ghost copies, in the particles' order. Each particle gets the operations the force passes, kick_twice and
 // drift_one give it: the same bits. (The force and kick passes' time is then in the profile's kick stage.)
 template <class Law, class Roll>
 void World::close_kicks_rolling(const PassStep<Law, Roll>& s, Lane& lane, double h) {
-  SpinBlock b;
-  long idx[kKickBlock];
+  using kick::kBlock;
+  kick::SpinBlock b;
+  long idx[kBlock];
   // The first stray particle and the largest move in registers: through `lane` (which the stores to the
   // particle arrays may alias) every drift would load and store them. Refining, the block's squared
   // displacements go to the lanes' Motions.
   long bad = lane.bad;
   double a2max = lane.a2max;
   const Vec3 u = lane.u;
-  alignas(64) double a2[kKickBlock], b2[kKickBlock];
+  alignas(64) double a2[kBlock], b2[kBlock];
+#if defined(__AVX512F__)
+  kick::Moves moves{lane.refine, u, a2, b2};
+#endif
+  // Eight particles at a time (model/kick_block.h) where the block has eight consecutive indices: one thread
+  // owns every particle, or a thread's slab after the spatial sort.
+  const auto eight = [&](int e, int m) { return kick::kEight && e + 8 <= m && idx[e + 7] == idx[e] + 7; };
+  const auto claimed_by_pass = [&](long a) { return with_kick_pass(forces_, a, [](const auto&) {}); };
   for (long q = 0; q < lane.n_own;) {
     int m = 0;
-    for (; q < lane.n_own && m < kKickBlock; ++q) idx[m++] = lane.particle(q);
+    for (; q < lane.n_own && m < kBlock; ++q) idx[m++] = lane.particle(q);
     // The block's force passes (the walls) first, in list order, while its state is in cache: one pass over
     // the particles instead of two (issue 19: the walls' own pass grew from 6.8 to 11.7 ns per particle-step
     // from the 13k to the 207k pour, memory-bound). A pass's add(a) reads and writes only particle a, so
     // each particle gets its passes' additions in list order, as one particle at a time: the same bits.
     add_force_passes(s, idx, m);
-    for (int e = 0; e < m; ++e) {
+    for (int e = 0; e < m;) {
+#if defined(__AVX512F__)
+      if (eight(e, m) && std::none_of(idx + e, idx + e + 8, claimed_by_pass)) {
+        kick::kick8(p_, accel_, h, b, e, idx[e]);
+        e += 8;
+        continue;
+      }
+#endif
       const long a = idx[e];
       // A particle a kick pass claims (the fluid's) gets its velocity from the pass, as kick_one twice gives
       // it, and its spin in the block like any other (before, its two scalar spin kicks, with their sqrt,
@@ -333,26 +307,33 @@ void World::close_kicks_rolling(const PassStep<Law, Roll>& s, Lane& lane, double
       b.wx[e] = w.x, b.wy[e] = w.y, b.wz[e] = w.z, b.dx[e] = dw.x, b.dy[e] = dw.y, b.dz[e] = dw.z;
       b.stop[e] = h * cap * p_.inv_inertia[a];
       b.cap[e] = cap;
+      ++e;
     }
-    spin_block(b, m);
-    if (lane.refine) {
-      for (int e = 0; e < m; ++e) {
-        const long a = idx[e];
-        p_.omega[a] = {b.wx[e], b.wy[e], b.wz[e]};
-        const Vec3 dx = drift_one(a, bad);
+    kick::spin_block(b, m);
+    for (int e = 0; e < m;) {
+#if defined(__AVX512F__)
+      if (eight(e, m)) {
+        kick::drift8(p_, x_at_rebuild_.data(), b, e, idx[e], cfg_.dt, cfg_.domain_min, cfg_.domain_max, bad, moves);
+        for (int l = e; l < e + 8; ++l) publish_ghost(lane, idx[l]);
+        e += 8;
+        continue;
+      }
+#endif
+      const long a = idx[e];
+      p_.omega[a] = {b.wx[e], b.wy[e], b.wz[e]};
+      const Vec3 dx = drift_one(a, bad);
+      if (lane.refine)
         a2[e] = norm2(dx), b2[e] = norm2(dx - u);
-        publish_ghost(lane, a);
-      }
-      lane.add_moves(a2, b2, m);
-    } else {
-      for (int e = 0; e < m; ++e) {
-        const long a = idx[e];
-        p_.omega[a] = {b.wx[e], b.wy[e], b.wz[e]};
-        a2max = std::max(a2max, norm2(drift_one(a, bad)));
-        publish_ghost(lane, a);
-      }
+      else
+        a2max = std::max(a2max, norm2(dx));
+      publish_ghost(lane, a);
+      ++e;
     }
+    if (lane.refine) lane.add_moves(a2, b2, m);
   }
+#if defined(__AVX512F__)
+  if (!lane.refine) a2max = std::max(a2max, moves.largest());
+#endif
   lane.bad = bad, lane.a2max = a2max;
 }
 
@@ -367,15 +348,15 @@ void World::step_lane(const PassStep<Law, Roll>& s, Lane& lane, Then then, doubl
   // Every particle's kick in blocks, each particle's force passes just before its kick (close_kicks_rolling).
   const bool blocked = then == Then::kick_drift && lane.rot && lane.roll;
   // Otherwise, per owned particle, after its pair sum: the force passes in list order (walls: in wall order),
-  // kKickBlock particles at a time.
+  // kick::kBlock particles at a time.
   if (!blocked)
     for_each_pass(forces_, [&](auto& pass) {
       if constexpr ((std::decay_t<decltype(pass)>::info.adds & kForceAdds) != 0)
         if (pass.active()) {
-          long idx[kKickBlock];
+          long idx[kick::kBlock];
           for (long q = 0; q < lane.n_own;) {
             int m = 0;
-            for (; q < lane.n_own && m < kKickBlock; ++q) idx[m++] = lane.particle(q);
+            for (; q < lane.n_own && m < kick::kBlock; ++q) idx[m++] = lane.particle(q);
             add_block_of(pass, s, idx, m);
           }
           lane.time(pass.info.stage);
@@ -386,10 +367,10 @@ void World::step_lane(const PassStep<Law, Roll>& s, Lane& lane, Then then, doubl
     close_kicks_rolling(s, lane, h);
   } else {
     double a2max = lane.a2max;
-    alignas(64) double a2[kKickBlock], b2[kKickBlock];
+    alignas(64) double a2[kick::kBlock], b2[kick::kBlock];
     for (long q = 0; q < lane.n_own;) {
       int m = 0;
-      for (; q < lane.n_own && m < kKickBlock; ++q) {
+      for (; q < lane.n_own && m < kick::kBlock; ++q) {
         const long a = lane.particle(q);
         if (with_kick_pass(forces_, a, [](const auto&) {})) continue;
         const Vec3 dx = close_kick(lane, a, then, h);
