@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The blocked kick of world.cpp (World::close_kicks_rolling): the spins of a block of particles in one vector
+// The blocked kick of world.cpp (World::close_kicks_blocked): the spins of a block of particles in one vector
 // loop (spin_block), and, where the build has AVX-512, eight consecutive particles' closing and opening
 // velocity kicks, spin inputs, drift, domain check and displacement since the last build at a time (kick8,
 // drift8): their Vec3 arrays loaded as three registers and transposed (model/simd_vec3.h), not one sphere's
@@ -51,6 +51,15 @@ struct SpinBlock {
 // Lanes 0 .. m-1: spin_twice of each (the block's spheres in one vector loop).
 inline void spin_block(SpinBlock& b, int m) {
   for (int e = 0; e < m; ++e) spin_twice(b.wx[e], b.wy[e], b.wz[e], b.dx[e], b.dy[e], b.dz[e], b.stop[e], b.cap[e] > 0.0);
+}
+
+// Lanes 0 .. m-1 without a rolling friction: w + dw + dw, as kick_twice (its spin_twice(held = false) side).
+inline void spin_free(SpinBlock& b, int m) {
+  for (int e = 0; e < m; ++e) {
+    b.wx[e] = (b.wx[e] + b.dx[e]) + b.dx[e];
+    b.wy[e] = (b.wy[e] + b.dy[e]) + b.dy[e];
+    b.wz[e] = (b.wz[e] + b.dz[e]) + b.dz[e];
+  }
 }
 
 #if defined(__AVX512F__)

@@ -13,7 +13,7 @@ namespace pastemix::model {
 //   neighbor        list rebuilds (and the threads' partition, and the spatial sort of the particles)
 //   contact_forces  the pair pass (contact and rolling laws over the pair list)
 //   walls           the wall pass (forces/wall_forces.h): wall forces of the particles near a wall; with
-//                   rotation and a kick-time rolling friction (the block kick, World::close_kicks_rolling) only
+//                   rotation (the block kick, World::close_kicks_blocked) only
 //                   its per-step set-up: each particle's wall forces are then computed just before its kick and
 //                   timed in `kick`
 //   kick            the closing half kick, the next opening half kick and drift of the particles; gravity

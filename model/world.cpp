@@ -251,13 +251,13 @@ void World::add_force_passes(const PassStep<Law, Roll>& s, const long* idx, int 
   });
 }
 
-// The force passes, then close_kick(Then::kick_drift), of every particle of the lane, with rotation and the
-// rolling friction on, kick::kBlock particles at a time: the velocities kicked as kick_twice does (a kick pass's
-// particle by the pass), the block's spins by spin_block (spin_twice), then the spins stored, the drifts and the
-// ghost copies, in the particles' order. Each particle gets the operations the force passes, kick_twice and
+// The force passes, then close_kick(Then::kick_drift), of every particle of the lane, with rotation on,
+// kick::kBlock particles at a time: the velocities kicked as kick_twice does (a kick pass's particle by the
+// pass), the block's spins by spin_block (spin_twice; without a rolling friction, w + dw + dw), then the spins
+// stored, the drifts and the ghost copies, in the particles' order. Each particle gets the operations the force passes, kick_twice and
 // drift_one give it: the same bits. (The force and kick passes' time is then in the profile's kick stage.)
 template <class Law, class Roll>
-void World::close_kicks_rolling(const PassStep<Law, Roll>& s, Lane& lane, double h) {
+void World::close_kicks_blocked(const PassStep<Law, Roll>& s, Lane& lane, double h) {
   using kick::kBlock;
   kick::SpinBlock b;
   long idx[kBlock];
@@ -309,7 +309,10 @@ void World::close_kicks_rolling(const PassStep<Law, Roll>& s, Lane& lane, double
       b.cap[e] = cap;
       ++e;
     }
-    kick::spin_block(b, m);
+    if (lane.roll)
+      kick::spin_block(b, m);
+    else
+      kick::spin_free(b, m);
     for (int e = 0; e < m;) {
 #if defined(__AVX512F__)
       if (eight(e, m)) {
@@ -345,8 +348,8 @@ void World::step_lane(const PassStep<Law, Roll>& s, Lane& lane, Then then, doubl
   });
   pair_forces(laws_, rolling_, s.ctx, p_, pairs_, lane.me, lane.cur);
   lane.time(Profile::contact_forces);
-  // Every particle's kick in blocks, each particle's force passes just before its kick (close_kicks_rolling).
-  const bool blocked = then == Then::kick_drift && lane.rot && lane.roll;
+  // Every particle's kick in blocks, each particle's force passes just before its kick (close_kicks_blocked).
+  const bool blocked = then == Then::kick_drift && lane.rot;
   // Otherwise, per owned particle, after its pair sum: the force passes in list order (walls: in wall order),
   // kick::kBlock particles at a time.
   if (!blocked)
@@ -364,7 +367,7 @@ void World::step_lane(const PassStep<Law, Roll>& s, Lane& lane, Then then, doubl
     });
   if (then == Then::nothing) return;
   if (blocked) {
-    close_kicks_rolling(s, lane, h);
+    close_kicks_blocked(s, lane, h);
   } else {
     double a2max = lane.a2max;
     alignas(64) double a2[kick::kBlock], b2[kick::kBlock];

@@ -167,10 +167,10 @@ class World {
   // The closing half kick of particle a (and the next opening half kick and drift, Then::kick_drift).
   // Returns its displacement since the last rebuild (m; 0 without a drift).
   Vec3 close_kick(Lane& lane, long a, Then then, double h);
-  // The force passes and close_kick(Then::kick_drift) of every particle of the lane with the rolling friction,
-  // in blocks (a kick pass's particles' velocities by the pass).
+  // The force passes and close_kick(Then::kick_drift) of every particle of the lane with rotation, in blocks
+  // (a kick pass's particles' velocities by the pass).
   template <class Law, class Roll>
-  void close_kicks_rolling(const PassStep<Law, Roll>& s, Lane& lane, double h);
+  void close_kicks_blocked(const PassStep<Law, Roll>& s, Lane& lane, double h);
   template <class Law, class Roll>
   void add_force_passes(const PassStep<Law, Roll>& s, const long* idx, int m);
   void publish_ghost(const Lane& lane, long a);
