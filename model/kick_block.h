@@ -66,9 +66,8 @@ inline void spin_free(SpinBlock& b, int m) {
 constexpr bool kEight = true;
 
 // Particles a0 .. a0 + 7 (none kicked by a kick pass): v += dv twice with dv = (f / m + g) h (World::
-// kick_velocity_twice), and their spins' inputs into lanes e .. e + 7 of b (omega, dw = tau (h / I),
-// stop = h M / I, M).
-inline void kick8(Particles& p, const Vec3& g, double h, SpinBlock& b, int e, long a0) {
+// kick_velocity_twice).
+inline void velocity8(Particles& p, const Vec3& g, double h, long a0) {
   using namespace simd;
   const __m512d hv = _mm512_set1_pd(h);
   const Aos8 im = spread(_mm512_loadu_pd(&p.inv_mass[a0])), f = load_aos8(&p.f[a0]), G = repeat(g);
@@ -78,6 +77,13 @@ inline void kick8(Particles& p, const Vec3& g, double h, SpinBlock& b, int e, lo
     return _mm512_add_pd(_mm512_add_pd(vv, dv), dv);
   };
   store_aos8(&p.v[a0], {twice(v.f0, f.f0, im.f0, G.f0), twice(v.f1, f.f1, im.f1, G.f1), twice(v.f2, f.f2, im.f2, G.f2)});
+}
+
+// The spins' inputs of particles a0 .. a0 + 7 into lanes e .. e + 7 of b: omega, dw = tau (h / I),
+// stop = h M / I, M.
+inline void spins8(const Particles& p, double h, SpinBlock& b, int e, long a0) {
+  using namespace simd;
+  const __m512d hv = _mm512_set1_pd(h);
   const __m512d ii = _mm512_loadu_pd(&p.inv_inertia[a0]), cap = _mm512_loadu_pd(&p.rolling_capacity[a0]);
   const __m512d k = _mm512_mul_pd(hv, ii);  // h / I
   const Soa8 t = to_soa(load_aos8(&p.torque[a0])), w = to_soa(load_aos8(&p.omega[a0]));
@@ -87,6 +93,12 @@ inline void kick8(Particles& p, const Vec3& g, double h, SpinBlock& b, int e, lo
   _mm512_storeu_pd(b.dz + e, _mm512_mul_pd(t.z, k));
   _mm512_storeu_pd(b.stop + e, _mm512_mul_pd(_mm512_mul_pd(hv, cap), ii));
   _mm512_storeu_pd(b.cap + e, cap);
+}
+
+// Both (particles a0 .. a0 + 7 that no kick pass kicks).
+inline void kick8(Particles& p, const Vec3& g, double h, SpinBlock& b, int e, long a0) {
+  velocity8(p, g, h, a0);
+  spins8(p, h, b, e, a0);
 }
 
 // Where the block's displacements go: refining, |dx|^2 and |dx - u|^2 into a2, b2 (lanes e .. e + 7);

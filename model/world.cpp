@@ -112,6 +112,31 @@ inline void World::kick_velocity_twice(long a, double h) {
   p_.v[a] = v;
 }
 
+// v after the two half kicks, by the kick pass that claims particle a (the fluid's, as kick_one twice gives
+// it: its force includes m g) or as kick_velocity_twice.
+inline void World::kick_claimed_twice(long a, double h) {
+  const bool claimed = with_kick_pass(forces_, a, [&](const auto& pass) {
+    const Vec3 F = p_.f[a] + accel_ * p_.mass[a];
+    const Vec3 v = pass.kick(a, p_.v[a], F, p_.mass[a], p_.radius[a], h, accel_);
+    p_.v[a] = pass.kick(a, v, F, p_.mass[a], p_.radius[a], h, accel_);
+  });
+  if (!claimed) kick_velocity_twice(a, h);
+}
+
+// The two half kicks of particles a0 .. a0 + 7 by the first active kick pass, where it claims all eight and
+// can kick them at once (FluidForces::kick8): the bits kick_claimed_twice gives each. False: nothing done.
+bool World::kick8_by_pass(long a0, double h) {
+  bool done = false, first = true;
+  for_each_pass(forces_, [&](auto& pass) {
+    if constexpr ((std::decay_t<decltype(pass)>::info.adds & adds::kick) != 0)
+      if (first && pass.active()) {
+        first = false;  // only the pass kick_claimed_twice would ask first
+        if constexpr (requires { pass.kick8(a0, p_, accel_, h); }) done = pass.kick8(a0, p_, accel_, h);
+      }
+  });
+  return done;
+}
+
 // The closing half kick of a step and the opening half kick of the next (the same force): kick_one twice,
 // with the shared factors computed once and v, omega kept in registers in between (the same bits).
 inline void World::kick_twice(long a, double h, bool rot, bool roll) {
@@ -285,8 +310,12 @@ void World::close_kicks_blocked(const PassStep<Law, Roll>& s, Lane& lane, double
     add_force_passes(s, idx, m);
     for (int e = 0; e < m;) {
 #if defined(__AVX512F__)
-      if (eight(e, m) && std::none_of(idx + e, idx + e + 8, claimed_by_pass)) {
-        kick::kick8(p_, accel_, h, b, e, idx[e]);
+      if (eight(e, m)) {
+        if (std::none_of(idx + e, idx + e + 8, claimed_by_pass))
+          kick::velocity8(p_, accel_, h, idx[e]);
+        else if (!kick8_by_pass(idx[e], h))
+          for (int l = e; l < e + 8; ++l) kick_claimed_twice(idx[l], h);
+        kick::spins8(p_, h, b, e, idx[e]);
         e += 8;
         continue;
       }
@@ -295,12 +324,7 @@ void World::close_kicks_blocked(const PassStep<Law, Roll>& s, Lane& lane, double
       // A particle a kick pass claims (the fluid's) gets its velocity from the pass, as kick_one twice gives
       // it, and its spin in the block like any other (before, its two scalar spin kicks, with their sqrt,
       // division and unpredictable branch, were ~40 % of the fluid's kick of a bed in air, issue 19).
-      const bool claimed = with_kick_pass(forces_, a, [&](const auto& pass) {
-        const Vec3 F = p_.f[a] + accel_ * p_.mass[a];
-        const Vec3 v = pass.kick(a, p_.v[a], F, p_.mass[a], p_.radius[a], h, accel_);
-        p_.v[a] = pass.kick(a, v, F, p_.mass[a], p_.radius[a], h, accel_);
-      });
-      if (!claimed) kick_velocity_twice(a, h);
+      kick_claimed_twice(a, h);
       const Vec3 dw = p_.torque[a] * (h * p_.inv_inertia[a]);
       const Vec3& w = p_.omega[a];
       const double cap = p_.rolling_capacity[a];

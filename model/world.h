@@ -184,6 +184,8 @@ class World {
   bool refine_moves(const Motion& moved) const;
   void kick_one(long a, double h, bool rot, bool roll);
   void kick_twice(long a, double h, bool rot, bool roll);
+  bool kick8_by_pass(long a0, double h);
+  void kick_claimed_twice(long a, double h);
   void kick_velocity_twice(long a, double h);
   // Drift of particle a by dt and its domain check; returns its displacement since the last rebuild (m).
   Vec3 drift_one(long a, long& first_bad);

@@ -52,6 +52,7 @@
 #include "model/fluid/drag_kick.h"
 #include "model/laws/registry.h"
 #include "model/particles.h"
+#include "model/simd_vec3.h"
 
 namespace pastemix::model {
 struct CheckpointAccess;
@@ -185,6 +186,84 @@ class FluidField {
     return kick_general(a, v, F, mass, radius, h, g);
   }
 
+#if defined(__AVX512F__)
+  // Particles a0 .. a0 + 7's two half kicks (the closing one of a step and the opening one of the next, the
+  // same force) where all eight are inside and on the inline linear branch of kick(): v += (v decay + force
+  // gain) twice, eight at a time (the blocked kick, model/kick_block.h), the bits kick() gives each. False,
+  // nothing changed, otherwise.
+  bool kick8_linear(long a0, Particles& p, const Vec3& g, double h) const {
+    const std::size_t i0 = static_cast<std::size_t>(a0);
+    if (!(h == 0.5 * dt_ && g.x == g_.x && g.y == g_.y && g.z == g_.z)) return false;
+    alignas(64) double rho_vsub[8];
+    unsigned buoyant = 0;  // lanes with buoyancy on
+    for (std::size_t l = 0; l < 8; ++l) {
+      const std::size_t i = i0 + l;
+      if (!(region_of_[i] >= 0 && lin_k_[i] > 0.0)) return false;
+      const double rho_b = buoyant_density_[static_cast<std::size_t>(region_of_[i])];  // 0: buoyancy off
+      rho_vsub[l] = rho_b * v_sub_[i];
+      if (rho_b > 0.0) buoyant |= 1u << l;
+    }
+    using namespace simd;
+    const Aos8 force = total_force8(p, a0, g, rho_vsub, buoyant);
+    const Aos8 decay = spread(_mm512_loadu_pd(&lin_decay_[i0])), gain = spread(_mm512_loadu_pd(&lin_gain_[i0]));
+    const auto once = [](__m512d v, __m512d d, __m512d fo, __m512d ga) {
+      return _mm512_add_pd(_mm512_mul_pd(v, d), _mm512_mul_pd(fo, ga));
+    };
+    Aos8 v = load_aos8(&p.v[a0]);
+    for (int k = 0; k < 2; ++k)
+      v = {once(v.f0, decay.f0, force.f0, gain.f0), once(v.f1, decay.f1, force.f1, gain.f1),
+           once(v.f2, decay.f2, force.f2, gain.f2)};
+    store_aos8(&p.v[a0], v);
+    return true;
+  }
+#endif
+
+#if defined(__AVX512F__)
+  // The same for eight particles inside and on the affine branch (a Bingham paste on its viscous branch,
+  // drag_kick.h affine_kick, the usual case in a paste): both half kicks, each v decay + F f_gain then the rest
+  // resistance removed along the motion, in lanes; false, nothing changed, where a lane is on another branch
+  // or leaves the affine one (its speed reaches s_max): kick() then takes it one particle at a time.
+  bool kick8_affine(long a0, Particles& p, const Vec3& g, double h) const {
+    const std::size_t i0 = static_cast<std::size_t>(a0);
+    if (!(h == 0.5 * dt_ && g.x == g_.x && g.y == g_.y && g.z == g_.z)) return false;
+    alignas(64) double rho_vsub[8], held[8];
+    unsigned buoyant = 0;
+    for (std::size_t l = 0; l < 8; ++l) {
+      const std::size_t i = i0 + l;
+      if (!(region_of_[i] >= 0 && !(lin_k_[i] > 0.0) && aff_k_[i] > 0.0)) return false;
+      const double rho_b = buoyant_density_[static_cast<std::size_t>(region_of_[i])];
+      rho_vsub[l] = rho_b * v_sub_[i];
+      if (rho_b > 0.0) buoyant |= 1u << l;
+      held[l] = d0_[i] * yield_factor(static_cast<long>(i));
+    }
+    using namespace simd;
+    const Soa8 F = to_soa(total_force8(p, a0, g, rho_vsub, buoyant));
+    const __m512d decay = _mm512_loadu_pd(&aff_decay_[i0]), fgain = _mm512_loadu_pd(&aff_fgain_[i0]);
+    const __m512d limit2 = _mm512_loadu_pd(&aff_limit2_[i0]);
+    const __m512d removable = _mm512_mul_pd(_mm512_load_pd(held), _mm512_loadu_pd(&aff_gain_[i0]));
+    const auto norm2 = [](__m512d x, __m512d y, __m512d z) {
+      return _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(x, x), _mm512_mul_pd(y, y)), _mm512_mul_pd(z, z));
+    };
+    Soa8 v = to_soa(load_aos8(&p.v[a0]));
+    for (int k = 0; k < 2; ++k) {
+      if (_mm512_cmp_pd_mask(norm2(v.x, v.y, v.z), limit2, _CMP_LT_OQ) != 0xff) return false;
+      const Soa8 o{_mm512_add_pd(_mm512_mul_pd(v.x, decay), _mm512_mul_pd(F.x, fgain)),
+                   _mm512_add_pd(_mm512_mul_pd(v.y, decay), _mm512_mul_pd(F.y, fgain)),
+                   _mm512_add_pd(_mm512_mul_pd(v.z, decay), _mm512_mul_pd(F.z, fgain))};
+      const __m512d speed2 = norm2(o.x, o.y, o.z);
+      if (_mm512_cmp_pd_mask(speed2, limit2, _CMP_LT_OQ) != 0xff) return false;
+      // remove_rest: stop where speed <= removable, else scale by (speed - removable) / speed.
+      const __m512d speed = _mm512_maskz_sqrt_pd(0xff, speed2);  // (the masked form: GCC 12 warns of the plain one)
+      const __mmask8 moving = _mm512_cmp_pd_mask(speed, removable, _CMP_NLE_UQ);
+      const __m512d scale = _mm512_div_pd(_mm512_sub_pd(speed, removable), speed);
+      v = {_mm512_maskz_mul_pd(moving, o.x, scale), _mm512_maskz_mul_pd(moving, o.y, scale),
+           _mm512_maskz_mul_pd(moving, o.z, scale)};
+    }
+    store_aos8(&p.v[a0], to_aos(v));
+    return true;
+  }
+#endif
+
   bool inside(long a) const { return region_of_[a] >= 0; }
   // inside(a), false where the field has no flags for a yet (before the first update, after a removal).
   bool known_inside(long a) const {
@@ -275,6 +354,26 @@ class FluidField {
   void keep_affine(const Particles& p, std::size_t a, int region, bool new_region);  // enter()'s aff_ part
   std::vector<double> buoyant_density_;  // kg/m3 per region, 0 where buoyancy is off (the inline kick)
   Vec3 kick_general(long a, const Vec3& v, const Vec3& F, double mass, double radius, double h, const Vec3& g) const;
+#if defined(__AVX512F__)
+  // The kick's force of particles a0 .. a0 + 7 (model/simd_vec3.h layout): F = f + g m, less g rho_b V_sub
+  // where buoyancy is on (lane l of `buoyant`; rho_vsub[l] = rho_b V_sub), as kick() forms it.
+  static simd::Aos8 total_force8(const Particles& p, long a0, const Vec3& g, const double* rho_vsub, unsigned buoyant) {
+    using namespace simd;
+    const Aos8 m = spread(_mm512_loadu_pd(&p.mass[a0])), f = load_aos8(&p.f[a0]), G = repeat(g);
+    Aos8 force{_mm512_add_pd(f.f0, _mm512_mul_pd(G.f0, m.f0)), _mm512_add_pd(f.f1, _mm512_mul_pd(G.f1, m.f1)),
+               _mm512_add_pd(f.f2, _mm512_mul_pd(G.f2, m.f2))};
+    if (buoyant == 0) return force;
+    const Aos8 rv = spread(_mm512_loadu_pd(rho_vsub));
+    // The particles' lanes in the three registers' layout (particle l owns components 3l .. 3l + 2).
+    __mmask8 on[3] = {0, 0, 0};
+    for (int c = 0; c < 24; ++c)
+      if ((buoyant >> (c / 3)) & 1u) on[c / 8] = static_cast<__mmask8>(on[c / 8] | (1u << (c % 8)));
+    force.f0 = _mm512_mask_sub_pd(force.f0, on[0], force.f0, _mm512_mul_pd(G.f0, rv.f0));
+    force.f1 = _mm512_mask_sub_pd(force.f1, on[1], force.f1, _mm512_mul_pd(G.f1, rv.f1));
+    force.f2 = _mm512_mask_sub_pd(force.f2, on[2], force.f2, _mm512_mul_pd(G.f2, rv.f2));
+    return force;
+  }
+#endif
   // Clusters are recomputed only when their input changed: the members, their positions, the surfaces or
   // the pair list (a bed at rest in the paste keeps its clusters, to the bit: the same input, the same
   // factors).

@@ -68,6 +68,16 @@ struct FluidForces {
   double partition_cost(long a) const { return field->known_inside(a) ? 8.0 : 0.0; }
   // Thread t's particles that the pass kicks (its own, ascending).
   const std::vector<long>& members(int thread) const { return field->members(thread); }
+  // Particles a0 .. a0 + 7's two half kicks at once where the field can (FluidField::kick8_linear): true
+  // when done (all eight claimed by this pass), false with nothing changed.
+  bool kick8(long a0, Particles& p, const Vec3& g, double h) const {
+#if defined(__AVX512F__)
+    return field->kick8_linear(a0, p, g, h) || field->kick8_affine(a0, p, g, h);
+#else
+    (void)a0, (void)p, (void)g, (void)h;
+    return false;
+#endif
+  }
   // New velocity after a half kick h (s) under the non-drag force F (N, gravity included).
   Vec3 kick(long a, const Vec3& v, const Vec3& F, double mass, double radius, double h, const Vec3& g) const {
     return field->kick(a, v, F, mass, radius, h, g);

@@ -1,0 +1,97 @@
+// SPDX-License-Identifier: MIT
+// FluidField's eight-at-a-time kicks (kick8_linear, kick8_affine; the blocked kick of world.cpp): both half
+// kicks of eight particles give, bit for bit, what kick() gives each one at a time, in a Newtonian fluid (the
+// linear branch) and in a Bingham paste at rest and sliding (the affine branch, its rest resistance holding
+// some spheres); a group with a sphere outside, on another branch or too fast for the affine one is declined
+// and left unchanged.
+#include "model/fluid/field.h"
+
+#include <doctest/doctest.h>
+
+#include <cstring>
+#include <random>
+#include <vector>
+
+using namespace pastemix::model;
+using namespace pastemix::model::fluid;
+
+namespace {
+
+bool same_bits(const Vec3& a, const Vec3& b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+// 64 spheres of 2-4 mm inside a 10 x 10 x 5 cm region (the first and the last eight of them from `out`:
+// above it).
+Particles rock(std::uint64_t seed, double speed, double force) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Particles p;
+  for (int k = 0; k < 64; ++k) {
+    const double z = k >= 56 ? 0.08 : 0.025 + 0.015 * u(rng);
+    p.add(0, 0.003 + 0.001 * u(rng), 2700, {0.05 + 0.04 * u(rng), 0.05 + 0.04 * u(rng), z},
+          {speed * u(rng), speed * u(rng), speed * u(rng)}, {});
+    p.f[static_cast<std::size_t>(k)] = {force * u(rng), force * u(rng), force * u(rng)};
+  }
+  return p;
+}
+
+FluidRegion region(bool paste) {
+  FluidRegion reg;
+  reg.x_min = reg.y_min = 0, reg.x_max = reg.y_max = 0.1, reg.z_bottom = 0, reg.z_surface0 = 0.05;
+  if (paste) {
+    reg.law = BinghamDedegil::Params{1843, 20, 0.7};
+    reg.curve = {pastemix::drag::CurveId::published_4_19, {}};
+  } else {
+    reg.law = NewtonianStokes::Params{1000, 1e-3};
+  }
+  return reg;
+}
+
+// Groups 0 .. 7 of eight: kick8 (the field's linear or affine form) against kick() twice per sphere.
+// Returns how many groups were kicked eight at a time.
+int check(bool paste, double speed, double force) {
+  const double dt = 2e-5, h = 0.5 * dt;
+  const Vec3 g{0, 0, -9.81};
+  Particles p = rock(paste ? 3 : 4, speed, force);
+  FluidField field({region(paste)});
+  field.set_step(dt, g);
+  field.update(p);
+  int eight = 0;
+  for (long a0 = 0; a0 < 64; a0 += 8) {
+    Particles q = p;
+    const bool done = paste ? field.kick8_affine(a0, q, g, h) : field.kick8_linear(a0, q, g, h);
+    // The other form declines a group that is not its own.
+    Particles r = p;
+    CHECK_FALSE((paste ? field.kick8_linear(a0, r, g, h) : field.kick8_affine(a0, r, g, h)));
+    for (long a = a0; a < a0 + 8; ++a) {
+      const auto i = static_cast<std::size_t>(a);
+      CHECK(same_bits(r.v[i], p.v[i]));
+      if (!done) {
+        CHECK(same_bits(q.v[i], p.v[i]));  // declined: unchanged
+        continue;
+      }
+      REQUIRE(field.inside(a));
+      const Vec3 F = p.f[i] + g * p.mass[i];
+      const Vec3 v1 = field.kick(a, p.v[i], F, p.mass[i], p.radius[i], h, g);
+      const Vec3 v2 = field.kick(a, v1, F, p.mass[i], p.radius[i], h, g);
+      CHECK(same_bits(q.v[i], v2));
+    }
+    eight += done;
+  }
+  return eight;
+}
+
+}  // namespace
+
+#if defined(__AVX512F__)
+TEST_CASE("fluid field: eight spheres' kicks at once give kick()'s bits, and a mixed group is declined") {
+  // Newtonian: every group inside is linear (the last group is above the region: declined).
+  CHECK(check(false, 0.3, 1e-3) == 7);
+  // Paste at rest under small forces (the rest resistance holds most) and sliding slowly: affine.
+  CHECK(check(true, 0.0, 1e-4) == 7);
+  CHECK(check(true, 0.01, 1e-3) == 7);
+  // Too fast for the affine branch, before the kick or after it (a large force from rest): every group
+  // declined (kick() takes its general branch).
+  CHECK(check(true, 3.0, 1e-3) == 0);
+  CHECK(check(true, 0.0, 30.0) == 0);
+}
+#endif
