@@ -365,9 +365,12 @@ class FluidField {
     if (buoyant == 0) return force;
     const Aos8 rv = spread(_mm512_loadu_pd(rho_vsub));
     // The particles' lanes in the three registers' layout (particle l owns components 3l .. 3l + 2).
-    __mmask8 on[3] = {0, 0, 0};
-    for (int c = 0; c < 24; ++c)
-      if ((buoyant >> (c / 3)) & 1u) on[c / 8] = static_cast<__mmask8>(on[c / 8] | (1u << (c % 8)));
+    __mmask8 on[3] = {0xff, 0xff, 0xff};  // all eight (the usual case: one region, buoyancy on)
+    if (buoyant != 0xffu) {
+      on[0] = on[1] = on[2] = 0;
+      for (int c = 0; c < 24; ++c)
+        if ((buoyant >> (c / 3)) & 1u) on[c / 8] = static_cast<__mmask8>(on[c / 8] | (1u << (c % 8)));
+    }
     force.f0 = _mm512_mask_sub_pd(force.f0, on[0], force.f0, _mm512_mul_pd(G.f0, rv.f0));
     force.f1 = _mm512_mask_sub_pd(force.f1, on[1], force.f1, _mm512_mul_pd(G.f1, rv.f1));
     force.f2 = _mm512_mask_sub_pd(force.f2, on[2], force.f2, _mm512_mul_pd(G.f2, rv.f2));
