@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // The blocked kick of world.cpp (World::close_kicks_blocked): the spins of a block of particles in one vector
 // loop (spin_block), and, where the build has AVX-512, eight consecutive particles' closing and opening
-// velocity kicks, spin inputs, drift, domain check and displacement since the last build at a time (kick8,
-// drift8): their Vec3 arrays loaded as three registers and transposed (model/simd_vec3.h), not one sphere's
+// velocity kicks, spin inputs, drift, domain check and displacement since the last build at a time (velocity8,
+// spins8, drift8): their Vec3 arrays loaded as three registers and transposed (model/simd_vec3.h), not one sphere's
 // x, y, z at a time. One sphere at a time this was ~20 % of the bench pour's samples on one thread (perf).
 // The arithmetic per component and its order are the scalar code's (World::kick_velocity_twice, drift_one,
 // Lane::add_moves), so the bits are the same (scripts/bitwise_check.sh, tests/model/kick_block_test.cpp).
@@ -93,12 +93,6 @@ inline void spins8(const Particles& p, double h, SpinBlock& b, int e, long a0) {
   _mm512_storeu_pd(b.dz + e, _mm512_mul_pd(t.z, k));
   _mm512_storeu_pd(b.stop + e, _mm512_mul_pd(_mm512_mul_pd(hv, cap), ii));
   _mm512_storeu_pd(b.cap + e, cap);
-}
-
-// Both (particles a0 .. a0 + 7 that no kick pass kicks).
-inline void kick8(Particles& p, const Vec3& g, double h, SpinBlock& b, int e, long a0) {
-  velocity8(p, g, h, a0);
-  spins8(p, h, b, e, a0);
 }
 
 // Where the block's displacements go: refining, |dx|^2 and |dx - u|^2 into a2, b2 (lanes e .. e + 7);

@@ -25,6 +25,20 @@ namespace pastemix::model {
 #if defined(__AVX512F__) && defined(__AVX512VL__)
 // 3 i per lane (the Vec3 arrays' double index): a shift and an add, not a 10-cycle multiply.
 inline __m256i times3(__m256i i) { return _mm256_add_epi32(i, _mm256_slli_epi32(i, 1)); }
+// Gathers of all eight lanes (the masked forms: the plain ones start from an undefined register, which GCC 12
+// warns of).
+inline __m512d gather_pd(__m256i at, const double* base) {
+  return _mm512_mask_i32gather_pd(_mm512_setzero_pd(), 0xff, at, base, 8);
+}
+inline __m256i gather_u32(__m256i at, const std::uint32_t* base) {
+  return _mm256_mmask_i32gather_epi32(_mm256_setzero_si256(), 0xff, at, base, 4);
+}
+// The three components of the Vec3 array `v` (as doubles) at the lanes' indices times 3, into x, y, z + l0.
+inline void gather_vec3(__m256i at3, const double* v, double* x, double* y, double* z, int l0) {
+  _mm512_storeu_pd(x + l0, gather_pd(at3, v));
+  _mm512_storeu_pd(y + l0, gather_pd(at3, v + 1));
+  _mm512_storeu_pd(z + l0, gather_pd(at3, v + 2));
+}
 #endif
 
 // The separation vectors x_j - x_i (m) of a chunk's touching candidates, one array per axis (not
@@ -105,13 +119,6 @@ struct PairFilter {
     static_assert(sizeof(Vec3) == 3 * sizeof(double));
     const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
     const double* X = p.x.empty() ? nullptr : &p.x[0].x;
-    // Gathers of all eight lanes (the masked forms: the plain ones start from an undefined register).
-    const auto gather_pd = [](__m256i at, const double* base) {
-      return _mm512_mask_i32gather_pd(_mm512_setzero_pd(), 0xff, at, base, 8);
-    };
-    const auto gather_u32 = [](__m256i at, const std::uint32_t* base) {
-      return _mm256_mmask_i32gather_epi32(_mm256_setzero_si256(), 0xff, at, base, 4);
-    };
     for (; q + 8 <= q1; q += 8) {
       __m256i e, a, b;
       __m512d rsum;
@@ -187,12 +194,6 @@ bool stage8(Batch& B, int l0, const std::uint32_t* e8, const Separations<N>& sep
 #if defined(__AVX512F__) && defined(__AVX512VL__)
   const __m256i k = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(e8));
   if (_mm256_movemask_ps(_mm256_castsi256_ps(k)) != 0) return false;  // kCrossBit is the sign bit
-  const auto gather_pd = [](__m256i at, const double* base) {
-    return _mm512_mask_i32gather_pd(_mm512_setzero_pd(), 0xff, at, base, 8);
-  };
-  const auto gather_u32 = [](__m256i at, const std::uint32_t* base) {
-    return _mm256_mmask_i32gather_epi32(_mm256_setzero_si256(), 0xff, at, base, 4);
-  };
   const __m256i a = gather_u32(k, L.i.data()), b = gather_u32(k, L.j.data());
   const __m256i a3 = times3(a), b3 = times3(b), k3 = times3(k);
   _mm512_storeu_pd(B.dx + l0, _mm512_loadu_pd(sep.x + q));
@@ -207,21 +208,11 @@ bool stage8(Batch& B, int l0, const std::uint32_t* e8, const Separations<N>& sep
   const double* V = &p.v[0].x;
   const double* W = &p.omega[0].x;
   const double* H = L.history.data();
-  _mm512_storeu_pd(B.vax + l0, gather_pd(a3, V));
-  _mm512_storeu_pd(B.vay + l0, gather_pd(a3, V + 1));
-  _mm512_storeu_pd(B.vaz + l0, gather_pd(a3, V + 2));
-  _mm512_storeu_pd(B.vbx + l0, gather_pd(b3, V));
-  _mm512_storeu_pd(B.vby + l0, gather_pd(b3, V + 1));
-  _mm512_storeu_pd(B.vbz + l0, gather_pd(b3, V + 2));
-  _mm512_storeu_pd(B.wax + l0, gather_pd(a3, W));
-  _mm512_storeu_pd(B.way + l0, gather_pd(a3, W + 1));
-  _mm512_storeu_pd(B.waz + l0, gather_pd(a3, W + 2));
-  _mm512_storeu_pd(B.wbx + l0, gather_pd(b3, W));
-  _mm512_storeu_pd(B.wby + l0, gather_pd(b3, W + 1));
-  _mm512_storeu_pd(B.wbz + l0, gather_pd(b3, W + 2));
-  _mm512_storeu_pd(B.hx + l0, gather_pd(k3, H));
-  _mm512_storeu_pd(B.hy + l0, gather_pd(k3, H + 1));
-  _mm512_storeu_pd(B.hz + l0, gather_pd(k3, H + 2));
+  gather_vec3(a3, V, B.vax, B.vay, B.vaz, l0);
+  gather_vec3(b3, V, B.vbx, B.vby, B.vbz, l0);
+  gather_vec3(a3, W, B.wax, B.way, B.waz, l0);
+  gather_vec3(b3, W, B.wbx, B.wby, B.wbz, l0);
+  gather_vec3(k3, H, B.hx, B.hy, B.hz, l0);
   return true;
 #else
   (void)B, (void)l0, (void)e8, (void)sep, (void)sep2, (void)rsums, (void)q, (void)p, (void)L;

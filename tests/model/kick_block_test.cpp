@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The blocked kick's eight-at-a-time forms (model/kick_block.h, model/simd_vec3.h): the transposes move every
-// value unchanged, and kick8 / drift8 give, bit for bit, what the one-sphere-at-a-time kick gives
+// value unchanged, and velocity8, spins8 and drift8 give, bit for bit, what the one-sphere-at-a-time kick gives
 // (World::kick_velocity_twice, drift_one, the displacements' squares), with a stray and a NaN particle caught.
 #include "model/kick_block.h"
 
@@ -63,7 +63,7 @@ TEST_CASE("kick block: the transposes and layouts move every value unchanged") {
   }
 }
 
-TEST_CASE("kick block: kick8 and drift8 give the one-at-a-time kick's bits, strays and NaN caught") {
+TEST_CASE("kick block: velocity8, spins8 and drift8 give the one-at-a-time kick's bits, strays and NaN caught") {
   const Vec3 g{0.0, 0.0, -9.81}, lo{0.02, 0.02, 0.02}, hi{0.08, 0.08, 0.08};
   const double h = 4.5e-6, dt = 9e-6;
   for (bool refine : {false, true}) {
@@ -79,7 +79,7 @@ TEST_CASE("kick block: kick8 and drift8 give the one-at-a-time kick's bits, stra
     double a2[24] = {}, b2[24] = {};
     kick::Moves moves{refine, u, a2, b2};
     long bad = std::numeric_limits<long>::max();
-    for (int e = 0; e < 24; e += 8) kick::kick8(p, g, h, b, e, e);
+    for (int e = 0; e < 24; e += 8) kick::velocity8(p, g, h, e), kick::spins8(p, h, b, e, e);
     for (int e = 0; e < 24; e += 8) kick::drift8(p, x_build.data(), b, e, e, dt, lo, hi, bad, moves);
     // The same, one sphere at a time, as world.cpp writes it.
     long bad_ref = std::numeric_limits<long>::max();
