@@ -128,9 +128,18 @@ struct PairFilter {
           for (long r = q; r < q + 8; ++r) one(r, o);
           continue;
         }
-        a = gather_u32(e, L.i.data());
-        b = gather_u32(e, L.j.data());
-        rsum = gather_pd(e, L.rsum.data());
+        const std::uint32_t k0 = static_cast<std::uint32_t>(_mm256_extract_epi32(e, 0));
+        if (static_cast<std::uint32_t>(_mm256_extract_epi32(e, 7)) == k0 + 7) {
+          // Eight consecutive pairs (a thread's list ascends, and most of it is runs): loads, not gathers
+          // (bench bed, 2 threads, 4 interleaved pairs: contact stage 0.658 -> 0.625 s, min of each).
+          a = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(L.i.data() + k0));
+          b = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(L.j.data() + k0));
+          rsum = _mm512_loadu_pd(L.rsum.data() + k0);
+        } else {
+          a = gather_u32(e, L.i.data());
+          b = gather_u32(e, L.j.data());
+          rsum = gather_pd(e, L.rsum.data());
+        }
       } else {
         e = _mm256_add_epi32(_mm256_set1_epi32(static_cast<int>(q)), lane);
         a = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(L.i.data() + q));
