@@ -66,10 +66,9 @@ void batch_chunk(const std::vector<typename Law::Params>& table, const std::vect
       B.hx[e] = h[0], B.hy[e] = h[1], B.hz[e] = h[2];
     };
     int l0 = 0;
-    // Eight lanes at a time by gathers where the build has AVX-512 and none of the eight crosses
-    // (model/pair_filter.h: stage8).
+    // Eight lanes at a time by gathers where the build has AVX-512 (model/pair_filter.h: stage8).
     for (; l0 + 8 <= nb; l0 += 8)
-      if (!stage8(B, l0, idx + q0 + l0, sep, sep2, rsums, q0 + l0, p, L))
+      if (!stage8(B, l0, idx + q0 + l0, sep, sep2, rsums, q0 + l0, p, L, cur))
         for (int l = l0; l < l0 + 8; ++l) stage(l);
     for (; l0 < nb; ++l0) stage(l0);
     if (law0 == PairList::kNone)

@@ -39,6 +39,28 @@ inline void gather_vec3(__m256i at3, const double* v, double* x, double* y, doub
   _mm512_storeu_pd(y + l0, gather_pd(at3, v + 1));
   _mm512_storeu_pd(z + l0, gather_pd(at3, v + 2));
 }
+
+// Where a group of eight pairs has cross pairs (lanes cm): those lanes read both particles' state from the
+// ghost copies of buffer `cur` (PairList::Ghost: x, v, w, nine doubles), the others from the store.
+struct Ghosts {
+  static_assert(sizeof(PairList::Ghost) == 9 * sizeof(double));
+  const double* G;
+  __mmask8 cm;
+  __m256i ga9, gb9;  // 9 x ghost slot of the lanes' i and j (cross lanes only)
+  Ghosts(const PairList& L, int cur, unsigned cross_lanes, __m256i a, __m256i b)
+      : G(reinterpret_cast<const double*>(L.ghost[cur].data())), cm(static_cast<__mmask8>(cross_lanes)) {
+    const auto nine = [](__m256i g) { return _mm256_add_epi32(_mm256_slli_epi32(g, 3), g); };
+    ga9 = nine(_mm256_mmask_i32gather_epi32(_mm256_setzero_si256(), cm, a, L.ghost_of.data(), 4));
+    gb9 = nine(_mm256_mmask_i32gather_epi32(_mm256_setzero_si256(), cm, b, L.ghost_of.data(), 4));
+  }
+  // Component `off` of the Ghost (0-2 x, 3-5 v, 6-8 w) of i (or j) in the cross lanes, base[at3] elsewhere.
+  __m512d pick(bool of_j, __m256i at3, const double* base, int off) const {
+    const __m512d here = _mm512_mask_i32gather_pd(_mm512_setzero_pd(), static_cast<__mmask8>(~cm), at3, base, 8);
+    return _mm512_mask_i32gather_pd(here, cm, of_j ? gb9 : ga9, G + off, 8);
+  }
+  __m512d a_or(__m256i a3, const double* base, int off) const { return pick(false, a3, base, off); }
+  __m512d b_or(__m256i b3, const double* base, int off) const { return pick(true, b3, base, off); }
+};
 #endif
 
 // The separation vectors x_j - x_i (m) of a chunk's touching candidates, one array per axis (not
@@ -105,6 +127,24 @@ struct PairFilter {
     }
   }
 
+#if defined(__AVX512F__) && defined(__AVX512VL__)
+  // The touching flags and springs of a group's cross pairs (lanes cm; pair k, first particle a), as one()
+  // sets them: by the owner of i only.
+  void cross_flags(unsigned cm, unsigned touch, __m256i k, __m256i a) const {
+    alignas(32) std::uint32_t k8[8], a8[8];
+    _mm256_store_si256(reinterpret_cast<__m256i*>(k8), k);
+    _mm256_store_si256(reinterpret_cast<__m256i*>(a8), a);
+    const std::size_t ws = static_cast<std::size_t>(L.width);
+    for (unsigned m = cm & 0xffu; m != 0; m &= m - 1) {
+      const int l = __builtin_ctz(m);
+      if (L.owner[a8[l]] != me) continue;
+      const std::uint32_t t = (touch >> l) & 1u;
+      if (t == 0) std::fill_n(&L.cross_hist[cur ^ 1][L.cross[k8[l]] * ws], L.width, 0.0);
+      L.touching[k8[l]] = t;
+    }
+  }
+#endif
+
   // Candidates q0 .. q1 (at most N) into o, one at a time.
   template <long N>
   void scalar(long q0, long q1, FilterOut<N>& o) const {
@@ -120,36 +160,45 @@ struct PairFilter {
     const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
     const double* X = p.x.empty() ? nullptr : &p.x[0].x;
     for (; q + 8 <= q1; q += 8) {
-      __m256i e, a, b;
+      __m256i e, k, a, b;
       __m512d rsum;
+      unsigned cm = 0;  // the cross pairs' lanes
       if constexpr (Part) {
         e = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(ks + q));
-        if (_mm256_movemask_ps(_mm256_castsi256_ps(e)) != 0) {  // kCrossBit is the sign bit
-          for (long r = q; r < q + 8; ++r) one(r, o);
-          continue;
-        }
+        cm = static_cast<unsigned>(_mm256_movemask_ps(_mm256_castsi256_ps(e)));  // kCrossBit is the sign bit
+        k = _mm256_and_si256(e, _mm256_set1_epi32(static_cast<int>(~PairList::kCrossBit)));
         const std::uint32_t k0 = static_cast<std::uint32_t>(_mm256_extract_epi32(e, 0));
-        if (static_cast<std::uint32_t>(_mm256_extract_epi32(e, 7)) == k0 + 7) {
+        if (cm == 0 && static_cast<std::uint32_t>(_mm256_extract_epi32(e, 7)) == k0 + 7) {
           // Eight consecutive pairs (a thread's list ascends, and most of it is runs): loads, not gathers
           // (bench bed, 2 threads, 4 interleaved pairs: contact stage 0.658 -> 0.625 s, min of each).
           a = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(L.i.data() + k0));
           b = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(L.j.data() + k0));
           rsum = _mm512_loadu_pd(L.rsum.data() + k0);
         } else {
-          a = gather_u32(e, L.i.data());
-          b = gather_u32(e, L.j.data());
-          rsum = gather_pd(e, L.rsum.data());
+          a = gather_u32(k, L.i.data());
+          b = gather_u32(k, L.j.data());
+          rsum = gather_pd(k, L.rsum.data());
         }
       } else {
-        e = _mm256_add_epi32(_mm256_set1_epi32(static_cast<int>(q)), lane);
+        e = k = _mm256_add_epi32(_mm256_set1_epi32(static_cast<int>(q)), lane);
         a = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(L.i.data() + q));
         b = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(L.j.data() + q));
         rsum = _mm512_loadu_pd(L.rsum.data() + q);
       }
       const __m256i a3 = times3(a), b3 = times3(b);
-      const __m512d dx = _mm512_sub_pd(gather_pd(b3, X), gather_pd(a3, X));
-      const __m512d dy = _mm512_sub_pd(gather_pd(b3, X + 1), gather_pd(a3, X + 1));
-      const __m512d dz = _mm512_sub_pd(gather_pd(b3, X + 2), gather_pd(a3, X + 2));
+      __m512d dx, dy, dz;
+      if (cm == 0) {
+        dx = _mm512_sub_pd(gather_pd(b3, X), gather_pd(a3, X));
+        dy = _mm512_sub_pd(gather_pd(b3, X + 1), gather_pd(a3, X + 1));
+        dz = _mm512_sub_pd(gather_pd(b3, X + 2), gather_pd(a3, X + 2));
+      } else {
+        // A cross pair's two positions from their ghost copies (Ghost: x, v, w, nine doubles), as one() reads
+        // them; the other lanes' from the store.
+        const Ghosts g{L, cur, cm, a, b};
+        dx = _mm512_sub_pd(g.b_or(b3, X, 0), g.a_or(a3, X, 0));
+        dy = _mm512_sub_pd(g.b_or(b3, X + 1, 1), g.a_or(a3, X + 1, 1));
+        dz = _mm512_sub_pd(g.b_or(b3, X + 2, 2), g.a_or(a3, X + 2, 2));
+      }
       // norm2: (dx dx + dy dy) + dz dz, no fused multiply-add (the build's -ffp-contract=off).
       const __m512d dist2 =
           _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy)), _mm512_mul_pd(dz, dz));
@@ -171,17 +220,20 @@ struct PairFilter {
       __m256i was;
       std::uint32_t* T = L.touching.data();
       const std::uint32_t k0 = static_cast<std::uint32_t>(_mm256_extract_epi32(e, 0));
-      if (!Part || static_cast<std::uint32_t>(_mm256_extract_epi32(e, 7)) == k0 + 7) {  // ascending: k0 .. k0 + 7
+      if (!Part || (cm == 0 && static_cast<std::uint32_t>(_mm256_extract_epi32(e, 7)) == k0 + 7)) {  // k0 .. k0 + 7
         was = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(T + k0));
         _mm256_storeu_si256(reinterpret_cast<__m256i*>(T + k0), now);
       } else {
-        was = gather_u32(e, T);
-        _mm256_i32scatter_epi32(reinterpret_cast<int*>(T), e, now, 4);
+        // The other lanes' flags here; a cross pair's below, by the owner of its i only.
+        const __mmask8 here = static_cast<__mmask8>(~cm);
+        was = _mm256_mmask_i32gather_epi32(_mm256_setzero_si256(), here, k, T, 4);
+        _mm256_mask_i32scatter_epi32(reinterpret_cast<int*>(T), here, k, now, 4);
       }
-      const unsigned opened = _mm256_test_epi32_mask(was, was) & ~static_cast<unsigned>(touch) & 0xffu;
+      if (cm != 0) cross_flags(cm, touch, k, a);
+      const unsigned opened = _mm256_test_epi32_mask(was, was) & ~static_cast<unsigned>(touch) & ~cm & 0xffu;
       if (opened != 0) {
         alignas(32) std::uint32_t ks8[8];
-        _mm256_store_si256(reinterpret_cast<__m256i*>(ks8), e);
+        _mm256_store_si256(reinterpret_cast<__m256i*>(ks8), k);
         const std::size_t ws = static_cast<std::size_t>(L.width);
         for (int l = 0; l < 8; ++l)
           if ((opened >> l) & 1u) std::fill_n(&L.history[ks8[l] * ws], L.width, 0.0);
@@ -195,14 +247,16 @@ struct PairFilter {
 // The pair pass's staging of eight touching pairs (entries e8[0 .. 8), chunk positions q .. q + 7 of the
 // filter's arrays) into lanes l0 .. l0 + 7 of a batch kernel's input B (a Law::Batch with HertzMindlin's
 // fields): separations, radii, R*, m*, both velocities and spins, the spring. Gathers, one store per field
-// instead of eight. False (nothing staged) where the build has no AVX-512 or one of the pairs crosses two
-// threads (its state is in the ghost copies): the caller stages them one at a time.
+// instead of eight. A cross pair (a thread's part, buffer `cur`) takes both particles' velocities and spins
+// from their ghost copies and its spring from cross_hist[cur], as the one-at-a-time staging does. False
+// (nothing staged) where the build has no AVX-512: the caller stages them one at a time.
 template <class Batch, long N>
 bool stage8(Batch& B, int l0, const std::uint32_t* e8, const Separations<N>& sep, const double* sep2,
-            const double* rsums, long q, const Particles& p, const PairList& L) {
+            const double* rsums, long q, const Particles& p, const PairList& L, int cur) {
 #if defined(__AVX512F__) && defined(__AVX512VL__)
-  const __m256i k = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(e8));
-  if (_mm256_movemask_ps(_mm256_castsi256_ps(k)) != 0) return false;  // kCrossBit is the sign bit
+  const __m256i e = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(e8));
+  const unsigned cm = static_cast<unsigned>(_mm256_movemask_ps(_mm256_castsi256_ps(e)));  // kCrossBit: sign bit
+  const __m256i k = _mm256_and_si256(e, _mm256_set1_epi32(static_cast<int>(~PairList::kCrossBit)));
   const __m256i a = gather_u32(k, L.i.data()), b = gather_u32(k, L.j.data());
   const __m256i a3 = times3(a), b3 = times3(b), k3 = times3(k);
   _mm512_storeu_pd(B.dx + l0, _mm512_loadu_pd(sep.x + q));
@@ -217,14 +271,34 @@ bool stage8(Batch& B, int l0, const std::uint32_t* e8, const Separations<N>& sep
   const double* V = &p.v[0].x;
   const double* W = &p.omega[0].x;
   const double* H = L.history.data();
-  gather_vec3(a3, V, B.vax, B.vay, B.vaz, l0);
-  gather_vec3(b3, V, B.vbx, B.vby, B.vbz, l0);
-  gather_vec3(a3, W, B.wax, B.way, B.waz, l0);
-  gather_vec3(b3, W, B.wbx, B.wby, B.wbz, l0);
-  gather_vec3(k3, H, B.hx, B.hy, B.hz, l0);
+  if (cm == 0) {
+    gather_vec3(a3, V, B.vax, B.vay, B.vaz, l0);
+    gather_vec3(b3, V, B.vbx, B.vby, B.vbz, l0);
+    gather_vec3(a3, W, B.wax, B.way, B.waz, l0);
+    gather_vec3(b3, W, B.wbx, B.wby, B.wbz, l0);
+    gather_vec3(k3, H, B.hx, B.hy, B.hz, l0);
+    return true;
+  }
+  const Ghosts g{L, cur, cm, a, b};
+  double* va[3] = {B.vax, B.vay, B.vaz};
+  double* vb[3] = {B.vbx, B.vby, B.vbz};
+  double* wa[3] = {B.wax, B.way, B.waz};
+  double* wb[3] = {B.wbx, B.wby, B.wbz};
+  double* hs[3] = {B.hx, B.hy, B.hz};
+  // The cross lanes' springs: slot cross[k] of cross_hist[cur], three doubles each.
+  const __m256i c3 = times3(_mm256_mmask_i32gather_epi32(_mm256_setzero_si256(), g.cm, k, L.cross.data(), 4));
+  const double* CH = L.cross_hist[cur].data();
+  for (int c = 0; c < 3; ++c) {
+    _mm512_storeu_pd(va[c] + l0, g.a_or(a3, V + c, 3 + c));
+    _mm512_storeu_pd(vb[c] + l0, g.b_or(b3, V + c, 3 + c));
+    _mm512_storeu_pd(wa[c] + l0, g.a_or(a3, W + c, 6 + c));
+    _mm512_storeu_pd(wb[c] + l0, g.b_or(b3, W + c, 6 + c));
+    const __m512d here = _mm512_mask_i32gather_pd(_mm512_setzero_pd(), static_cast<__mmask8>(~g.cm), k3, H + c, 8);
+    _mm512_storeu_pd(hs[c] + l0, _mm512_mask_i32gather_pd(here, g.cm, c3, CH + c, 8));
+  }
   return true;
 #else
-  (void)B, (void)l0, (void)e8, (void)sep, (void)sep2, (void)rsums, (void)q, (void)p, (void)L;
+  (void)B, (void)l0, (void)e8, (void)sep, (void)sep2, (void)rsums, (void)q, (void)p, (void)L, (void)cur;
   return false;
 #endif
 }

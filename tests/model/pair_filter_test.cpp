@@ -2,7 +2,7 @@
 // The pair pass's filter and staging (model/pair_filter.h): eight candidates at a time (AVX-512 builds) give
 // the entries, separations, touching flags and zeroed springs that one candidate at a time gives, bit for bit,
 // for a single thread's list and for a thread's part with cross pairs; stage8 fills each lane with its pair's
-// state, and declines a group with a cross pair.
+// state, a cross pair's from the ghost copies and the cross springs.
 #include "model/pair_filter.h"
 
 #include <doctest/doctest.h>
@@ -74,11 +74,15 @@ Setup make(std::uint64_t seed, int n, long np) {
   for (int c = 0; c < 2; ++c) L.cross_hist[c].assign(L.cross_pairs.size() * 3, 2e-6);
   L.ghost_of.resize(static_cast<std::size_t>(n));
   for (int c = 0; c < 2; ++c) L.ghost[c].resize(static_cast<std::size_t>(n));
+  // Ghost slots in another order than the particles (a slot is not a particle index).
   for (int a = 0; a < n; ++a) {
-    L.ghost_of[static_cast<std::size_t>(a)] = static_cast<std::uint32_t>(a);
+    const auto slot = static_cast<std::size_t>(n - 1 - a);
+    L.ghost_of[static_cast<std::size_t>(a)] = static_cast<std::uint32_t>(slot);
     for (int c = 0; c < 2; ++c)
-      L.ghost[c][static_cast<std::size_t>(a)] = {p.x[a] + Vec3{1e-5 * c, 0.0, -2e-5}, p.v[a] * 0.5, p.omega[a] * 2.0};
+      L.ghost[c][slot] = {p.x[a] + Vec3{1e-5 * c, 0.0, -2e-5}, p.v[a] * (0.5 + c), p.omega[a] * (2.0 + c)};
   }
+  for (int c = 0; c < 2; ++c)
+    for (std::size_t x = 0; x < L.cross_hist[c].size(); ++x) L.cross_hist[c][x] = 1e-6 * static_cast<double>(x + 7 * c);
   return s;
 }
 
@@ -137,14 +141,14 @@ TEST_CASE("pair filter: eight candidates at a time give what one at a time gives
   }
 }
 
-TEST_CASE("pair filter: stage8 puts each pair's state in its lane and declines a cross pair") {
+TEST_CASE("pair filter: stage8 puts each pair's state in its lane, a cross pair's from the ghosts") {
   const Setup s = make(5, 300, 900);
   HertzMindlin::Batch B{};
   FilterOut<kN> o;
   PairList L = s.L;
   PairFilter<false>{s.p, L, nullptr, 0, 0}.scalar(0, kN, o);
   REQUIRE(o.m >= 16);
-  const bool staged = stage8(B, 8, o.idx + 3, o.sep, o.sep2, o.rsums, 3, s.p, L);
+  const bool staged = stage8(B, 8, o.idx + 3, o.sep, o.sep2, o.rsums, 3, s.p, L, 0);
 #if defined(__AVX512F__) && defined(__AVX512VL__)
   REQUIRE(staged);
 #else
@@ -183,11 +187,35 @@ TEST_CASE("pair filter: stage8 puts each pair's state in its lane and declines a
   // Lanes outside 8 .. 15 untouched.
   CHECK(B.ra[7] == 0.0);
   CHECK(B.ra[16] == 0.0);
-  // A group with one cross pair is declined, nothing written.
-  std::uint32_t e8[8];
-  std::copy_n(o.idx, 8, e8);
-  e8[5] |= PairList::kCrossBit;
-  HertzMindlin::Batch C{};
-  CHECK_FALSE(stage8(C, 0, e8, o.sep, o.sep2, o.rsums, 0, s.p, L));
-  CHECK(C.ra[0] == 0.0);
+  // A group with cross pairs (a thread's part, both buffers): those lanes read the ghost copies of both
+  // particles and the spring in cross_hist[cur]; the others the store, as above.
+  for (int cur = 0; cur < 2; ++cur) {
+    std::vector<std::uint32_t> e8;
+    for (std::uint32_t e : s.ks[1])
+      if (e8.size() < 8 && ((e & PairList::kCrossBit) != 0 || e8.size() % 3 == 0)) e8.push_back(e);
+    REQUIRE(e8.size() == 8);
+    REQUIRE(std::count_if(e8.begin(), e8.end(), [](std::uint32_t e) { return (e & PairList::kCrossBit) != 0; }) >= 2);
+    HertzMindlin::Batch C{};
+    REQUIRE(stage8(C, 0, e8.data(), o.sep, o.sep2, o.rsums, 0, s.p, L, cur));
+    for (int l = 0; l < 8; ++l) {
+      const bool cross_pair = (e8[l] & PairList::kCrossBit) != 0;
+      const std::uint32_t k = e8[l] & ~PairList::kCrossBit, a = L.i[k], b = L.j[k];
+      const Vec3 va = cross_pair ? L.state(a, cur).v : s.p.v[a], vb = cross_pair ? L.state(b, cur).v : s.p.v[b];
+      const Vec3 wa = cross_pair ? L.state(a, cur).w : s.p.omega[a], wb = cross_pair ? L.state(b, cur).w : s.p.omega[b];
+      const double* h = cross_pair ? &L.cross_hist[cur][L.cross[k] * 3] : &L.history[k * 3];
+      CHECK(C.ra[l] == s.p.radius[a]);
+      CHECK(C.rb[l] == s.p.radius[b]);
+      CHECK(C.r_star[l] == L.r_star[k]);
+      CHECK(C.vax[l] == va.x);
+      CHECK(C.vby[l] == vb.y);
+      CHECK(C.vbz[l] == vb.z);
+      CHECK(C.way[l] == wa.y);
+      CHECK(C.wbx[l] == wb.x);
+      CHECK(C.waz[l] == wa.z);
+      CHECK(C.hx[l] == h[0]);
+      CHECK(C.hy[l] == h[1]);
+      CHECK(C.hz[l] == h[2]);
+      if (cross_pair) CHECK(C.vax[l] != s.p.v[a].x);  // the ghost, not the particle
+    }
+  }
 }
