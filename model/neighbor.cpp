@@ -112,7 +112,7 @@ void NeighborSearch::build(const std::vector<Vec3>& x, const std::vector<double>
   // Six phases, five syncs of the team (no libgomp region or barrier: on this 2-core VM a sleeping
   // thread takes tens of us to wake, and a pour rebuilds every ~8 steps): each thread's bounding box of
   // its share, their union and the set-up in thread 0 (size levels, grids, counting sort: linear, a
-  // fraction of the search), the search of the finder chunks dealt round-robin, the chunks' offsets in
+  // fraction of the search), the search of the finder chunks (a WorkQueue), the chunks' offsets in
   // thread 0, then each thread copies its chunks into `out` (the caller syncs before reading it).
   long k0 = 0, k1 = 0;
   t.range(static_cast<long>(n), k0, k1);
@@ -129,6 +129,7 @@ void NeighborSearch::build(const std::vector<Vec3>& x, const std::vector<double>
     slot_.resize(n);
     if (chunks_.size() < nchunks) chunks_.resize(nchunks);
     offset_.assign(nchunks + 1, 0);
+    queue_.reset(static_cast<long>(nchunks), t.size);
   }
   t.sync();
   boxes_[static_cast<std::size_t>(t.me)] = box;
@@ -139,8 +140,10 @@ void NeighborSearch::build(const std::vector<Vec3>& x, const std::vector<double>
     side(Team{t.me - 1, t.size - 1, nullptr});
   t.sync();
   const Vec3 lo{boxes_[0][0], boxes_[0][1], boxes_[0][2]};
-  for (std::size_t c = static_cast<std::size_t>(t.me); c < nchunks; c += static_cast<std::size_t>(t.size))
-    search_chunk(c, x, radius, skin, lo);
+  // Each thread its own run of chunks first (model/parallel.h: WorkQueue); the pairs do not depend on which
+  // thread searched a chunk.
+  for (long c = queue_.next(t.me); c >= 0; c = queue_.next(t.me))
+    search_chunk(static_cast<std::size_t>(c), x, radius, skin, lo);
   t.sync();
   if (t.me == 0) {
     for (std::size_t c = 0; c < nchunks; ++c) offset_[c + 1] = offset_[c] + chunks_[c].n;

@@ -76,6 +76,7 @@ class NeighborSearch {
   std::vector<Chunk> chunks_;
   std::vector<std::size_t> offset_;
   std::vector<std::array<double, 6>> boxes_;  // per thread: the bounding box (min xyz, max xyz) of its share
+  WorkQueue queue_;                           // the search's chunks among the team
 
   void set_up(const std::vector<Vec3>& x, const std::vector<double>& radius, double skin);
   void search_chunk(std::size_t c, const std::vector<Vec3>& x, const std::vector<double>& radius, double skin,

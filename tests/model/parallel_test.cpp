@@ -92,3 +92,47 @@ TEST_CASE("parallel: run_team gives each thread its rank and its syncs separate 
     CHECK(size_seen.load() <= threads);
   }
 }
+
+TEST_CASE("parallel: the work queue gives each item once, own range first, then the others' from the back") {
+  // One thread at a time (a fixed interleaving): thread 0 alone takes its range 0 .. 4 in order, then thread
+  // 1's from the back (9, 8, ...) while thread 1 takes its own from the front (5, 6, ...).
+  WorkQueue q;
+  q.reset(10, 2);
+  std::vector<long> got0, got1;
+  for (int k = 0; k < 5; ++k) got0.push_back(q.next(0));
+  CHECK(got0 == std::vector<long>{0, 1, 2, 3, 4});
+  got1.push_back(q.next(1));
+  got0.push_back(q.next(0));
+  got0.push_back(q.next(0));
+  got1.push_back(q.next(1));
+  got1.push_back(q.next(1));
+  CHECK(got1 == std::vector<long>{5, 6, 7});
+  CHECK(got0 == std::vector<long>{0, 1, 2, 3, 4, 9, 8});
+  CHECK(q.next(0) == -1);
+  CHECK(q.next(1) == -1);
+  // Reused with another count and team; an empty queue; one thread takes everything in order.
+  q.reset(0, 3);
+  CHECK(q.next(2) == -1);
+  q.reset(4, 1);
+  for (long k = 0; k < 4; ++k) CHECK(q.next(0) == k);
+  CHECK(q.next(0) == -1);
+  // Real threads, one of them slowed: every item exactly once.
+  for (int threads : {2, 3, 4}) {
+    CAPTURE(threads);
+    constexpr long kItems = 5000;
+    q.reset(kItems, threads);
+    std::vector<std::atomic<int>> seen(kItems);
+    std::vector<std::thread> team;
+    for (int t = 0; t < threads; ++t)
+      team.emplace_back([&, t] {
+        for (long k = q.next(t); k >= 0; k = q.next(t)) {
+          seen[static_cast<std::size_t>(k)].fetch_add(1);
+          if (t == 0) std::this_thread::yield();
+        }
+      });
+    for (auto& th : team) th.join();
+    long once = 0;
+    for (const auto& s : seen) once += s.load() == 1;
+    CHECK(once == kItems);
+  }
+}
