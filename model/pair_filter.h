@@ -151,7 +151,7 @@ struct PairFilter {
     for (long q = q0; q < q1; ++q) one(q, o);
   }
 
-  // The same, eight at a time where the build has AVX-512 (a group with a cross pair goes one at a time).
+  // The same, eight at a time where the build has AVX-512 (a cross pair's lanes read the ghost copies).
   template <long N>
   void run(long q0, long q1, FilterOut<N>& o) const {
     long q = q0;
@@ -163,12 +163,15 @@ struct PairFilter {
       __m256i e, k, a, b;
       __m512d rsum;
       unsigned cm = 0;  // the cross pairs' lanes
+      std::uint32_t k0 = static_cast<std::uint32_t>(q);
+      bool consecutive = true;  // pairs k0 .. k0 + 7, none crossing (a single thread's list: always)
       if constexpr (Part) {
         e = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(ks + q));
         cm = static_cast<unsigned>(_mm256_movemask_ps(_mm256_castsi256_ps(e)));  // kCrossBit is the sign bit
         k = _mm256_and_si256(e, _mm256_set1_epi32(static_cast<int>(~PairList::kCrossBit)));
-        const std::uint32_t k0 = static_cast<std::uint32_t>(_mm256_extract_epi32(e, 0));
-        if (cm == 0 && static_cast<std::uint32_t>(_mm256_extract_epi32(e, 7)) == k0 + 7) {
+        k0 = static_cast<std::uint32_t>(_mm256_extract_epi32(e, 0));
+        consecutive = cm == 0 && static_cast<std::uint32_t>(_mm256_extract_epi32(e, 7)) == k0 + 7;
+        if (consecutive) {
           // Eight consecutive pairs (a thread's list ascends, and most of it is runs): loads, not gathers
           // (bench bed, 2 threads, 4 interleaved pairs: contact stage 0.658 -> 0.625 s, min of each).
           a = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(L.i.data() + k0));
@@ -219,8 +222,7 @@ struct PairFilter {
       const __m256i now = _mm256_maskz_mov_epi32(touch, _mm256_set1_epi32(1));
       __m256i was;
       std::uint32_t* T = L.touching.data();
-      const std::uint32_t k0 = static_cast<std::uint32_t>(_mm256_extract_epi32(e, 0));
-      if (!Part || (cm == 0 && static_cast<std::uint32_t>(_mm256_extract_epi32(e, 7)) == k0 + 7)) {  // k0 .. k0 + 7
+      if (consecutive) {
         was = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(T + k0));
         _mm256_storeu_si256(reinterpret_cast<__m256i*>(T + k0), now);
       } else {
