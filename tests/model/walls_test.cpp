@@ -3,6 +3,7 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 
@@ -86,4 +87,71 @@ TEST_CASE("walls: the distance bound never exceeds the exact distance, and rules
     }
   // Most random points of the tall domain are more than 1 cm above or below the funnel's 14 cm.
   CHECK(ruled_out > 3 * 4000 / 2);
+}
+
+// rectangle_distance's plane case (the projection inside the rectangle: |h| and -sign(h) n, no square root)
+// against the general closest-point form, written out here: the same distance and direction to round-off
+// inside, the general form itself at the edges and corners, on the plane, for NaN and for axes that are not at
+// right angles.
+TEST_CASE("walls: a rectangle's plane case agrees with the closest point") {
+  auto closest = [](const Wall& w, const Vec3& o, const Vec3& p, Vec3& n) {
+    const Vec3 rel = p - o;
+    const double su = std::clamp(dot(rel, w.u) * (1.0 / norm2(w.u)), -1.0, 1.0);  // finish()'s inv_u2
+    const double sv = std::clamp(dot(rel, w.v) * (1.0 / norm2(w.v)), -1.0, 1.0);
+    const Vec3 d = o + w.u * su + w.v * sv - p;
+    const double len = norm(d);
+    n = len > 0.0 ? d * (1.0 / len) : Vec3{0, 0, -1};
+    return len;
+  };
+  Wall side;  // a box's x = 0 side as scene/walls.cpp lays it out: u along y, v along z
+  side.kind = WallKind::rectangle;
+  side.origin = {0.0, 0.1, 0.125};
+  side.u = {0, 0.1, 0};
+  side.v = {0, 0, 0.125};
+  side.finish();
+  REQUIRE(side.square);
+  Wall tilted = side;  // a parallelogram: the general form only
+  tilted.v = {0, 0.03, 0.125};
+  tilted.finish();
+  CHECK_FALSE(tilted.square);
+  std::uint64_t state = 777;
+  auto uniform = [&](double lo, double hi) {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return lo + (hi - lo) * static_cast<double>(state >> 11) / 9007199254740992.0;
+  };
+  int inside = 0, outside = 0;
+  for (const Wall* w : {&side, &tilted})
+    for (int k = 0; k < 20000; ++k) {
+      const Vec3 p{uniform(-0.02, 0.02), uniform(-0.05, 0.25), uniform(-0.05, 0.3)};
+      Vec3 n, n_ref;
+      const double d = rectangle_distance(*w, w->origin, p, &n);
+      const double d_ref = closest(*w, w->origin, p, n_ref);
+      const Vec3 rel = p - w->origin;
+      const bool in = std::abs(dot(rel, w->u) * w->inv_u2) < 1.0 && std::abs(dot(rel, w->v) * w->inv_v2) < 1.0;
+      if (w->square && in) {
+        ++inside;
+        // The general form's closest point carries a round-off of ~1e-17 m (coordinates of 0.1-0.3 m): its
+        // distance errs by that, its direction by that over the distance.
+        REQUIRE(std::abs(d - d_ref) < 1e-16);
+        REQUIRE(d == std::abs(p.x));  // the height above the x = 0 plane, exactly
+        REQUIRE(norm(n - n_ref) * d < 1e-16);
+        REQUIRE(n.x == (p.x > 0.0 ? -1.0 : 1.0));
+      } else {
+        outside += w->square;
+        REQUIRE(d == d_ref);  // the general form, to the bit
+        REQUIRE(n.x == n_ref.x);
+        REQUIRE(n.y == n_ref.y);
+        REQUIRE(n.z == n_ref.z);
+      }
+    }
+  CHECK(inside > 5000);
+  CHECK(outside > 5000);
+  Vec3 n;
+  // On the plane: the general form (a zero distance, the fallback direction).
+  CHECK(rectangle_distance(side, side.origin, {0.0, 0.12, 0.1}, &n) == 0.0);
+  CHECK(n.z == -1.0);
+  // A corner region: to the corner.
+  CHECK(rectangle_distance(side, side.origin, {0.03, 0.24, 0.29}, &n) ==
+        doctest::Approx(std::sqrt(0.03 * 0.03 + 0.04 * 0.04 + 0.04 * 0.04)));
+  CHECK(std::isnan(rectangle_distance(side, side.origin, {NAN, 0.1, 0.1}, &n)));
 }
