@@ -54,6 +54,7 @@ struct CheckpointAccess {
     io(q.start), io(q.entry);
     auto& c = w.wall_contacts_;
     io(c.width), io(c.walls), io(c.start), io(c.near), io(c.history), io(c.touching);
+    if constexpr (!std::is_const_v<W>) c.list_particles();  // derived from start, not stored
     io(w.x_at_rebuild_), io(w.shift_velocity_), io(w.escaped_);
     auto& field = std::get<FluidForces>(w.forces_).field;
     bool wet = field != nullptr;

@@ -20,6 +20,7 @@ void WallContacts::resize(std::size_t particles, int n_walls, int history_width)
   walls = n_walls;
   width = history_width;
   start.assign(particles + 1, 0);
+  listed.clear();
   near.clear();
   history.clear();
   touching.clear();
@@ -151,6 +152,13 @@ void WallContacts::swap_in() {
   near.swap(spare_near_);
   history.swap(spare_hist_);
   touching.swap(spare_touch_);
+  list_particles();
+}
+
+void WallContacts::list_particles() {
+  listed.clear();
+  for (std::size_t a = 0; a + 1 < start.size(); ++a)
+    if (start[a + 1] > start[a]) listed.push_back(static_cast<std::uint32_t>(a));
 }
 
 void WallContacts::rename(const std::vector<std::uint32_t>& map, std::size_t np) {
@@ -176,6 +184,7 @@ void WallContacts::rename(const std::vector<std::uint32_t>& map, std::size_t np)
   near.swap(spare_near_);
   touching.swap(spare_touch_);
   history.swap(spare_hist_);
+  list_particles();
 }
 
 }  // namespace pastemix::model

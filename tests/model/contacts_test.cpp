@@ -107,10 +107,19 @@ TEST_CASE("contacts: the batched wall pass gives the per-particle wall pass's bi
       wall_forces_one<HertzMindlin, ConstantTorque>(laws, rolling, ctx, a.walls, ws, a.p, wa, k, f, t, rc);
       a.p.f[k] = f, a.p.torque[k] = t, a.p.rolling_capacity[k] = rc;
     }
-    // In blocks of 61 particles (not a multiple of the batch: some batches span two blocks' contacts).
-    for (std::size_t q = 0; q < idx.size(); q += 61)
-      wall_forces_block<HertzMindlin, ConstantTorque>(laws, rolling, ctx, b.walls, ws, b.p, wb, idx.data() + q,
-                                                      static_cast<int>(std::min<std::size_t>(61, idx.size() - q)));
+    // In blocks of 61 particles (not a multiple of the batch: some batches span two blocks' contacts): step 0
+    // ascending blocks of consecutive particles (the listed particles only, the cursor moving on), step 1
+    // the blocks in descending order (the cursor searches back), step 2 blocks of every other particle (not
+    // consecutive: each particle's row tested). A particle's wall forces are its own: any order, same bits.
+    std::vector<long> order;
+    for (std::size_t k = 0; k < idx.size(); ++k)
+      order.push_back(step < 2 ? idx[k] : static_cast<long>(2 * k < idx.size() ? 2 * k : 2 * k - idx.size() + 1 - idx.size() % 2));
+    std::vector<std::size_t> starts;
+    for (std::size_t q = 0; q < order.size(); q += 61) starts.push_back(q);
+    if (step == 1) std::reverse(starts.begin(), starts.end());
+    for (std::size_t q : starts)
+      wall_forces_block<HertzMindlin, ConstantTorque>(laws, rolling, ctx, b.walls, ws, b.p, wb, order.data() + q,
+                                                      static_cast<int>(std::min<std::size_t>(61, order.size() - q)));
     for (std::size_t k = 0; k < a.p.size(); ++k) {
       CAPTURE(k);
       CHECK(a.p.f[k].x == b.p.f[k].x);

@@ -4,6 +4,8 @@
 // springs and the touching flags of the one-call rebuild.
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <cstdint>
 #include <vector>
 
 #include "base/rng.h"
@@ -84,4 +86,34 @@ TEST_CASE("wall lists: the rebuild in steps, blocks split and ordered any way, e
     Rng rng(100 + round);
     for (Vec3& x : s.p.x) x += Vec3{rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)} * skin;
   }
+}
+
+// The particles the wall pass visits in a block of consecutive ones (WallContacts::listed): exactly those
+// with a candidate wall, ascending, after a rebuild, a renaming (a spatial sort's permutation with removals)
+// and a resize.
+TEST_CASE("wall lists: the listed particles are those with candidates, after a rebuild and a renaming") {
+  Scene s;
+  WallContacts w;
+  w.resize(s.p.size(), static_cast<int>(s.walls.size()), 3);
+  CHECK(w.listed.empty());
+  const auto expected = [&] {
+    std::vector<std::uint32_t> e;
+    for (std::size_t a = 0; a + 1 < w.start.size(); ++a)
+      if (w.start[a + 1] > w.start[a]) e.push_back(static_cast<std::uint32_t>(a));
+    return e;
+  };
+  w.rebuild(s.walls, s.p, 0.0, 1e-3, 1);
+  CHECK(w.listed.size() > 100);
+  CHECK(w.listed.size() < s.p.size() / 2);
+  CHECK(w.listed == expected());
+  // Reverse the order and drop every tenth particle.
+  const std::size_t n = s.p.size();
+  std::vector<std::uint32_t> map(n);
+  std::uint32_t kept = 0;
+  for (std::size_t a = n; a-- > 0;) map[a] = a % 10 == 0 ? Particles::kGone : kept++;
+  w.rename(map, kept);
+  CHECK(w.listed == expected());
+  CHECK(std::is_sorted(w.listed.begin(), w.listed.end()));
+  w.resize(kept, static_cast<int>(s.walls.size()), 3);
+  CHECK(w.listed.empty());
 }
