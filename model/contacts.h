@@ -151,7 +151,7 @@ struct WallContacts {
   void rename(const std::vector<std::uint32_t>& map, std::size_t np);
 
  private:
-  std::vector<char> cand_;            // rebuild(): per particle and wall, candidate or not
+  std::vector<char> cand_;            // rebuild(): per wall and particle (wall k: [k n, (k + 1) n)), candidate or not
   std::vector<std::uint32_t> count_;  // rebuild(): per particle, its candidate walls
   std::size_t cand_walls_ = 0;        // rebuild(): walls per particle in cand_
   std::vector<std::uint32_t> spare_start_, spare_touch_;
