@@ -216,19 +216,40 @@ void NeighborSearch::set_up(const std::vector<Vec3>& x, const std::vector<double
   // (start[c]: the end of cell c), then fill from the last particle down with start[c] as the cursor, which
   // leaves start[c] at the beginning of cell c. (Counting into start[c + 1] and filling upwards needs a
   // shift of the whole array back by one cell: a pass over a tall pour's ~1 M cells at every rebuild.)
-  for (std::size_t k = 0; k < n; ++k) {
-    Level& L = lev_[static_cast<std::size_t>(level_of_[k])];
-    cell_id_[k] = static_cast<std::uint32_t>(L.index(L.clamp_cell(x[k].x - lo.x, 0), L.clamp_cell(x[k].y - lo.y, 1),
-                                                     L.clamp_cell(x[k].z - lo.z, 2)));
-    ++L.start[cell_id_[k]];
+  if (nlev_ == 1) {
+    // One level (sizes within a factor 2: most scenes): the cells without the per-particle level, in a loop of
+    // their own that the compiler vectorises (clamp_cell's expressions), then the counts.
+    Level& L = lev_[0];
+    const double inv = L.inv;
+    // clamp_cell clamped in double, then converted: the same cell for every finite position (and 0 for NaN,
+    // as clamp_cell gives), and a form the compiler vectorises (its long clamp it did not).
+    const double n0 = static_cast<double>(L.dim[0]), n1 = static_cast<double>(L.dim[1]);
+    const double d0 = n0 - 1.0, d1 = n1 - 1.0, d2 = static_cast<double>(L.dim[2] - 1);
+    const double lx = lo.x, ly = lo.y, lz = lo.z;
+    const double* X = &x[0].x;  // x, y, z of particle k at 3 k .. 3 k + 2
+    std::uint32_t* cell = cell_id_.data();
+    const auto clamped = [](double v, double top) { return std::min(std::max(0.0, std::floor(v)), top); };
+    for (std::size_t k = 0; k < n; ++k) {
+      const double cx = clamped((X[3 * k] - lx) * inv, d0);
+      const double cy = clamped((X[3 * k + 1] - ly) * inv, d1);
+      const double cz = clamped((X[3 * k + 2] - lz) * inv, d2);
+      cell[k] = static_cast<std::uint32_t>((cz * n1 + cy) * n0 + cx);  // exact: integers below 2^32
+    }
+    for (std::size_t k = 0; k < n; ++k) ++L.start[cell[k]];
+  } else {
+    for (std::size_t k = 0; k < n; ++k) {
+      Level& L = lev_[static_cast<std::size_t>(level_of_[k])];
+      cell_id_[k] = static_cast<std::uint32_t>(L.index(L.clamp_cell(x[k].x - lo.x, 0), L.clamp_cell(x[k].y - lo.y, 1),
+                                                       L.clamp_cell(x[k].z - lo.z, 2)));
+      ++L.start[cell_id_[k]];
+    }
   }
   for (Level& L : lev_) {
     const std::size_t cells = L.start.size() - 1;
     for (std::size_t c = 1; c < cells; ++c) L.start[c] += L.start[c - 1];
     L.start[cells] = static_cast<std::uint32_t>(L.count);
   }
-  for (std::size_t k = n; k-- > 0;) {
-    Level& L = lev_[static_cast<std::size_t>(level_of_[k])];
+  const auto fill = [&](Level& L, std::size_t k) {
     const std::uint32_t s = --L.start[cell_id_[k]];
     L.sorted[s] = static_cast<std::uint32_t>(k);
     L.xs[s] = x[k].x;
@@ -236,7 +257,11 @@ void NeighborSearch::set_up(const std::vector<Vec3>& x, const std::vector<double
     L.zs[s] = x[k].z;
     L.rs[s] = radius[k];
     slot_[k] = s;
-  }
+  };
+  if (nlev_ == 1)
+    for (std::size_t k = n; k-- > 0;) fill(lev_[0], k);
+  else
+    for (std::size_t k = n; k-- > 0;) fill(lev_[static_cast<std::size_t>(level_of_[k])], k);
 }
 
 // The pairs found by the finders of chunk c (particles c kFinders .. (c + 1) kFinders), in scan order.

@@ -144,3 +144,37 @@ TEST_CASE("neighbor: a pour's tall, mostly empty box keeps cells of 2 r_max + sk
   CHECK(cells > 8.0 * x.size());  // the case this test is for: a sparse box
   CHECK(as_set(pairs) == as_set(brute_force_pairs(x, r, skin)));  // the pairs of the O(N^2) search
 }
+
+// One size level (radii within a factor 2) computes the cells in a loop of its own (model/neighbor.cpp): every
+// particle lands in the cell clamp_cell gives, ascending index inside a cell (the order the scan's pairs follow),
+// the particles on the box's far faces in the last cells and a NaN coordinate in the first cell of its axis,
+// as clamp_cell puts it.
+TEST_CASE("neighbor: one level's cells are clamp_cell's, a NaN coordinate in the first cell of its axis") {
+  std::vector<Vec3> x;
+  std::vector<double> r;
+  cloud(13, 2000, {0.05, 0.03, 0.02}, 1.0, x, r);
+  x[7] = {0.05, 0.03, 0.02};  // the far corner
+  x[11] = {NAN, 0.01, 0.01};
+  NeighborSearch search;
+  CandidatePairs out;
+  search.build(x, r, 0.4e-3, out, 1);
+  REQUIRE(search.levels().size() == 1);
+  const NeighborSearch::Level& L = search.levels()[0];
+  // The box's lower corner as the search takes it (the positions' minimum; NaN is skipped by std::min).
+  Vec3 lo = x[0];
+  for (const Vec3& q : x) lo = {std::min(lo.x, q.x), std::min(lo.y, q.y), std::min(lo.z, q.z)};
+  std::vector<std::pair<std::size_t, std::uint32_t>> expected;  // (cell, particle)
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    const Vec3 rel = x[k] - lo;
+    const long cx = std::isnan(rel.x) ? 0 : L.clamp_cell(rel.x, 0);
+    expected.emplace_back(L.index(cx, L.clamp_cell(rel.y, 1), L.clamp_cell(rel.z, 2)), static_cast<std::uint32_t>(k));
+  }
+  std::sort(expected.begin(), expected.end());
+  REQUIRE(L.sorted.size() == x.size());
+  for (std::size_t s = 0; s < x.size(); ++s) {
+    CAPTURE(s);
+    REQUIRE(L.sorted[s] == expected[s].second);
+    REQUIRE(L.start[expected[s].first] <= s);
+    REQUIRE(s < L.start[expected[s].first + 1]);
+  }
+}
