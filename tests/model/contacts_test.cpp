@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <map>
 
 #include "model/world.h"
 #include "base/rng.h"
@@ -192,5 +193,63 @@ TEST_CASE("contacts: the partition gives each thread its share of the cost") {
       CHECK(L.work[t] / total == doctest::Approx(share[t]).epsilon(0.02));
       CHECK(!L.own[t].empty());
     }
+  }
+}
+
+// The history carry-over at a rebuild (PairList::rebuild tries the old pair after the last one found, then
+// the old row of the first particle): a new list that keeps most old pairs in order, drops some, inserts new
+// ones and swaps neighbours carries exactly the springs of the old touching pairs, zeros elsewhere, on 1 and
+// 2 threads.
+TEST_CASE("contacts: the springs carried at a rebuild, for a list that kept, dropped, added and reordered pairs") {
+  Particles p;
+  Rng rng(23);
+  const int np = 400;
+  for (int a = 0; a < np; ++a) p.add(0, 1e-3, 2760, {rng.uniform(0, 0.1), rng.uniform(0, 0.1), 0.0}, {}, {});
+  CandidatePairs old_pairs;
+  for (std::uint32_t a = 0; a < np; ++a)
+    for (std::uint32_t b : {a + 1, a + 7, a + 30})
+      if (b < np) old_pairs.i.push_back(a), old_pairs.j.push_back(b);
+  for (int threads : {1, 2}) {
+    CAPTURE(threads);
+    PairList L;
+    L.width = 3;
+    CandidatePairs first = old_pairs;
+    L.rebuild(first, p, 1, threads);
+    // Old springs: pair k touching every third, spring (k, k + 0.5, -k).
+    for (std::size_t k = 0; k < L.size(); ++k) {
+      L.touching[k] = k % 3 != 1;
+      for (int e = 0; e < 3; ++e) L.history[3 * k + e] = L.touching[k] ? (e == 0 ? k : e == 1 ? k + 0.5 : -1.0 * k) : 0.0;
+    }
+    std::map<std::pair<std::uint32_t, std::uint32_t>, std::size_t> old_at;
+    for (std::size_t k = 0; k < L.size(); ++k) old_at[{L.i[k], L.j[k]}] = k;
+    const std::vector<double> old_hist = L.history;
+    const std::vector<std::uint32_t> old_touch = L.touching;
+    // The new list: every 11th old pair dropped, a new pair after every 13th, neighbours swapped every 17th.
+    CandidatePairs next;
+    for (std::size_t k = 0; k < old_pairs.i.size(); ++k) {
+      if (k % 11 == 5) continue;
+      next.i.push_back(old_pairs.i[k]), next.j.push_back(old_pairs.j[k]);
+      if (k % 13 == 0 && old_pairs.j[k] + 2 < np) next.i.push_back(old_pairs.i[k]), next.j.push_back(old_pairs.j[k] + 2);
+      if (k % 17 == 3 && next.i.size() >= 2) {
+        std::swap(next.i[next.i.size() - 1], next.i[next.i.size() - 2]);
+        std::swap(next.j[next.j.size() - 1], next.j[next.j.size() - 2]);
+      }
+    }
+    const CandidatePairs expect = next;
+    L.rebuild(next, p, 1, threads);
+    REQUIRE(L.size() == expect.i.size());
+    int carried = 0, fresh = 0;
+    for (std::size_t k = 0; k < L.size(); ++k) {
+      CAPTURE(k);
+      REQUIRE(L.i[k] == expect.i[k]);
+      REQUIRE(L.j[k] == expect.j[k]);
+      const auto it = old_at.find({L.i[k], L.j[k]});
+      const bool carry = it != old_at.end() && old_touch[it->second];
+      REQUIRE(L.touching[k] == (carry ? 1u : 0u));
+      for (int e = 0; e < 3; ++e) REQUIRE(L.history[3 * k + e] == (carry ? old_hist[3 * it->second + e] : 0.0));
+      carried += carry, fresh += it == old_at.end();
+    }
+    CHECK(carried > 500);
+    CHECK(fresh > 50);
   }
 }
