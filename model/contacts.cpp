@@ -382,7 +382,7 @@ void PairList::rename(const std::vector<std::uint32_t>& map, std::size_t np) {
 }
 
 void PairList::partition(int n_threads, const std::vector<Vec3>& x, const std::vector<double>* extra,
-                         const std::vector<double>* share) {
+                         const std::vector<double>* share, const std::array<double, 6>* box) {
   threads = n_threads;
   ++partitions;
   const std::size_t np = x.size(), n = size(), ws = static_cast<std::size_t>(width);
@@ -402,9 +402,13 @@ void PairList::partition(int n_threads, const std::vector<Vec3>& x, const std::v
   // cross a cut, the less work is done twice (settled bed, 2 threads: 2 % of the pairs cross a cut across
   // its 20 cm side, 14 % cross a cut between the halves of the index range).
   Vec3 lo = x[0], hi = x[0];
-  for (const Vec3& q : x) {
-    lo = {std::min(lo.x, q.x), std::min(lo.y, q.y), std::min(lo.z, q.z)};
-    hi = {std::max(hi.x, q.x), std::max(hi.y, q.y), std::max(hi.z, q.z)};
+  if (box) {
+    lo = {(*box)[0], (*box)[1], (*box)[2]}, hi = {(*box)[3], (*box)[4], (*box)[5]};
+  } else {
+    for (const Vec3& q : x) {
+      lo = {std::min(lo.x, q.x), std::min(lo.y, q.y), std::min(lo.z, q.z)};
+      hi = {std::max(hi.x, q.x), std::max(hi.y, q.y), std::max(hi.z, q.z)};
+    }
   }
   const Vec3 ext = hi - lo;
   const int axis = ext.x >= ext.y && ext.x >= ext.z ? 0 : (ext.y >= ext.z ? 1 : 2);
@@ -448,8 +452,10 @@ void PairList::partition(int n_threads, const std::vector<Vec3>& x, const std::v
   }
   work.assign(static_cast<std::size_t>(n_threads), 0.0);
   for (std::size_t a = 0; a < np; ++a) {
-    const int o = static_cast<int>(std::upper_bound(first.begin(), first.end(), bin_of[a]) - first.begin()) - 1;
-    owner[a] = static_cast<std::uint8_t>(std::clamp(o, 0, n_threads - 1));
+    // The slab whose first bin is the last at or below the particle's (first[] ascends from first[0] = 0).
+    int o = 0;
+    while (o + 1 < n_threads && first[static_cast<std::size_t>(o) + 1] <= bin_of[a]) ++o;
+    owner[a] = static_cast<std::uint8_t>(o);
     own[owner[a]].push_back(static_cast<std::uint32_t>(a));
     work[owner[a]] += cost[a];
   }

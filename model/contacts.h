@@ -20,6 +20,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -97,8 +98,10 @@ struct PairList {
   // thread t's slab of about share[t] of the total cost (particles, pairs, touching pairs, and `extra` per
   // particle where given: the force passes' own work, e.g. a fluid kick); equal shares without `share`.
   // work[t]: the cost of thread t's slab (the units of the load balance, World::partition).
+  // box: the positions' bounding box (min xyz, max xyz) where the caller has it (the neighbour search's,
+  // of the same positions), else computed here.
   void partition(int threads, const std::vector<Vec3>& x, const std::vector<double>* extra = nullptr,
-                 const std::vector<double>* share = nullptr);
+                 const std::vector<double>* share = nullptr, const std::array<double, 6>* box = nullptr);
   std::vector<double> work;
   // Copies the cross pairs' history back into `history` (the threads are done).
   void sync_cross();

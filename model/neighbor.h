@@ -62,6 +62,9 @@ class NeighborSearch {
   };
   // The grid levels of the last build (tests: their cell sizes).
   const std::vector<Level>& levels() const { return lev_; }
+  // The bounding box (min xyz, max xyz) of the last build's positions (any number of them; std::min and
+  // std::max from x[0], as a serial loop over them gives it).
+  const std::array<double, 6>& box() const { return boxes_[0]; }
 
  private:
   struct Chunk {

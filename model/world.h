@@ -3,6 +3,7 @@
 // See the design essay at the top of world.cpp.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -137,7 +138,7 @@ class World {
   void rebuild_neighbors();
   void rebuild_lists(int threads);
   // pairs_.partition with the passes' own cost per particle (partition_cost(a), where a pass has one).
-  void partition(int threads, const std::vector<Vec3>& x);
+  void partition(int threads, const std::vector<Vec3>& x, const std::array<double, 6>* box = nullptr);
   void update_shares(int threads);
   bool imbalanced(int threads) const;
   std::vector<double> pass_cost_;

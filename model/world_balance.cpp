@@ -62,20 +62,20 @@ bool World::imbalanced(int threads) const {
   return busy > 20e-3 && hi > 1.1 * lo;
 }
 
-void World::partition(int threads, const std::vector<Vec3>& x) {
+void World::partition(int threads, const std::vector<Vec3>& x, const std::array<double, 6>* box) {
   if (threads > 1) update_shares(threads);
   bool costed = false;
   for_each_pass(forces_, [&](const auto& pass) {
     if constexpr (requires { pass.partition_cost(0L); }) costed |= pass.active();
   });
-  if (!costed || threads <= 1) return pairs_.partition(threads, x, nullptr, &share_);
+  if (!costed || threads <= 1) return pairs_.partition(threads, x, nullptr, &share_, box);
   pass_cost_.assign(p_.size(), 0.0);
   for_each_pass(forces_, [&](const auto& pass) {
     if constexpr (requires { pass.partition_cost(0L); })
       if (pass.active())
         for (std::size_t a = 0; a < p_.size(); ++a) pass_cost_[a] += pass.partition_cost(static_cast<long>(a));
   });
-  pairs_.partition(threads, x, &pass_cost_, &share_);
+  pairs_.partition(threads, x, &pass_cost_, &share_, box);
 }
 
 }  // namespace pastemix::model

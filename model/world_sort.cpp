@@ -59,9 +59,8 @@ void World::rebuild_neighbors() {
     if constexpr (requires { pass.lists_rebuilt(); })
       if (pass.active()) pass.lists_rebuilt();
   });
-  rebuild_lists(threads_for(static_cast<long>(p_.size())));
+  rebuild_lists(threads_for(static_cast<long>(p_.size())));  // (sets the shift velocity too)
   t_at_rebuild_ = t_;
-  set_shift_velocity();
   ++profile_.rebuilds;
 }
 
@@ -77,6 +76,7 @@ void World::rebuild_lists(int threads) {
   pairs_.rebuild(candidates_, p_, n_materials, threads);
   wall_contacts_.rebuild(walls_, p_, t_, cfg_.skin, threads);
   x_at_rebuild_ = p_.x;
+  set_shift_velocity();
   partition(threads, p_.x);
 #else
   // The search, the pair list, the wall lists and the partition in one team, synced by the yielding
@@ -105,11 +105,12 @@ void World::rebuild_lists(int threads) {
       wall_contacts_.fill_rows(0, static_cast<long>(n));
       wall_contacts_.swap_in();
       x_at_rebuild_ = p_.x;
+      set_shift_velocity();  // (reads the velocities only; serial after the team, ~4 % of the 2-thread pour's rebuild)
     }
     // The threads' particles and pairs (slabs of the new positions), for the thread count of this build.
     // (An error leaves the region first: nobody syncs after this.)
     if (team.me == 0) try {
-        partition(threads, p_.x);
+        partition(threads, p_.x, n >= 2 ? &search_.box() : nullptr);  // the search's box of these positions
       } catch (...) {
         failure = std::current_exception();
       }

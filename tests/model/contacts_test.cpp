@@ -181,11 +181,19 @@ TEST_CASE("contacts: the partition gives each thread its share of the cost") {
   Particles p;
   for (int k = 0; k < 2000; ++k)
     p.add(0, 1e-3, 2760, {rng.uniform(0, 0.1), rng.uniform(0, 0.03), rng.uniform(0, 0.02)}, {}, {});
-  CandidatePairs c = build_pairs(p.x, p.radius, 5e-4);
+  NeighborSearch search;
+  CandidatePairs c;
+  search.build(p.x, p.radius, 5e-4, c, 1);
   PairList L;
   L.rebuild(c, p, 1, 1);
   for (const std::vector<double>& share : {std::vector<double>{0.5, 0.5}, {0.2, 0.8}, {0.1, 0.3, 0.6}}) {
+    // With the search's bounding box of the same positions (as the rebuild passes it): the same partition.
+    PairList B = L;
+    B.partition(static_cast<int>(share.size()), p.x, nullptr, &share, &search.box());
     L.partition(static_cast<int>(share.size()), p.x, nullptr, &share);
+    CHECK(B.owner == L.owner);
+    CHECK(B.mine == L.mine);
+    CHECK(B.work == L.work);
     double total = 0.0;
     for (double w : L.work) total += w;
     for (std::size_t t = 0; t < share.size(); ++t) {
