@@ -84,7 +84,7 @@ void World::rebuild_lists(int threads) {
   // slept and woke at each under OMP_WAIT_POLICY=passive, and the 2-thread pour's rebuilds took as long as
   // on one thread (issue 19). The serial parts overlap: while thread 0 sorts the particles into the
   // search's grids, the others flag the wall candidates; while it partitions, thread 1 lays out the wall
-  // lists and keeps the positions of this build.
+  // lists, keeps the positions of this build and computes the shift velocity (model/motion.h).
   const std::size_t n = p_.size();
   std::exception_ptr failure;
   run_team(threads, step_barrier_, [&](const Team& team) {

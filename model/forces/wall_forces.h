@@ -2,7 +2,7 @@
 // The wall pass: contact forces of the walls (walls.h) on the particles near them, by the scene's contact
 // and rolling laws (a wall is an infinite-radius, infinite-mass sphere of its own material). Per particle,
 // its candidate walls (WallContacts, rebuilt with the pair list) in wall order, added to the pair sums of its
-// owner thread; most particles have no candidate and cost one comparison.
+// owner thread; most particles have no candidate and are skipped (WallContacts::listed).
 #pragma once
 
 #include <vector>
