@@ -90,7 +90,9 @@ bool scan_is_vectorized() { return false; }
 }  // namespace detail
 
 long NeighborSearch::Level::clamp_cell(double v, int axis) const {
-  return std::clamp(static_cast<long>(std::floor(v * inv)), 0L, dim[axis] - 1);
+  // Clamped in double, then converted: a cell for any v (NaN: 0), and a form the compiler vectorises in
+  // set_up's loop over the particles (a clamp of the converted long it did not vectorise).
+  return static_cast<long>(std::min(std::max(0.0, std::floor(v * inv)), static_cast<double>(dim[axis] - 1)));
 }
 
 void NeighborSearch::build(const std::vector<Vec3>& x, const std::vector<double>& radius, double skin,
@@ -218,24 +220,15 @@ void NeighborSearch::set_up(const std::vector<Vec3>& x, const std::vector<double
   // shift of the whole array back by one cell: a pass over a tall pour's ~1 M cells at every rebuild.)
   if (nlev_ == 1) {
     // One level (sizes within a factor 2: most scenes): the cells without the per-particle level, in a loop of
-    // their own that the compiler vectorises (clamp_cell's expressions), then the counts.
-    Level& L = lev_[0];
-    const double inv = L.inv;
-    // clamp_cell clamped in double, then converted: the same cell for every finite position (and 0 for NaN,
-    // as clamp_cell gives), and a form the compiler vectorises (its long clamp it did not).
-    const double n0 = static_cast<double>(L.dim[0]), n1 = static_cast<double>(L.dim[1]);
-    const double d0 = n0 - 1.0, d1 = n1 - 1.0, d2 = static_cast<double>(L.dim[2] - 1);
-    const double lx = lo.x, ly = lo.y, lz = lo.z;
+    // their own that the compiler vectorises, then the counts.
+    const Level& L = lev_[0];
     const double* X = &x[0].x;  // x, y, z of particle k at 3 k .. 3 k + 2
     std::uint32_t* cell = cell_id_.data();
-    const auto clamped = [](double v, double top) { return std::min(std::max(0.0, std::floor(v)), top); };
     for (std::size_t k = 0; k < n; ++k) {
-      const double cx = clamped((X[3 * k] - lx) * inv, d0);
-      const double cy = clamped((X[3 * k + 1] - ly) * inv, d1);
-      const double cz = clamped((X[3 * k + 2] - lz) * inv, d2);
-      cell[k] = static_cast<std::uint32_t>((cz * n1 + cy) * n0 + cx);  // exact: integers below 2^32
+      const long cx = L.clamp_cell(X[3 * k] - lo.x, 0), cy = L.clamp_cell(X[3 * k + 1] - lo.y, 1);
+      cell[k] = static_cast<std::uint32_t>(L.index(cx, cy, L.clamp_cell(X[3 * k + 2] - lo.z, 2)));
     }
-    for (std::size_t k = 0; k < n; ++k) ++L.start[cell[k]];
+    for (std::size_t k = 0; k < n; ++k) ++lev_[0].start[cell[k]];
   } else {
     for (std::size_t k = 0; k < n; ++k) {
       Level& L = lev_[static_cast<std::size_t>(level_of_[k])];

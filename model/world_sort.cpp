@@ -105,7 +105,8 @@ void World::rebuild_lists(int threads) {
       wall_contacts_.fill_rows(0, static_cast<long>(n));
       wall_contacts_.swap_in();
       x_at_rebuild_ = p_.x;
-      set_shift_velocity();  // (reads the velocities only; serial after the team, ~4 % of the 2-thread pour's rebuild)
+      // Reads the velocities only; serial after the team, it was ~4 % of the 2-thread pour's rebuild.
+      set_shift_velocity();
     }
     // The threads' particles and pairs (slabs of the new positions), for the thread count of this build.
     // (An error leaves the region first: nobody syncs after this.)
