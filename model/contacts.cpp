@@ -31,8 +31,9 @@ using Separations = model::Separations<kChunk>;
 // owned particles in ascending pair order, as the scalar loop does.
 template <class Law, class Roll, bool Part>
 void batch_chunk(const std::vector<typename Law::Params>& table, const std::vector<typename Roll::Params>& rolling,
-                 const StepContext& ctx, Particles& p, PairList& L, const std::uint32_t* idx, const Separations& sep,
-                 const double* sep2, const double* rsums, long m, int me, int cur) {
+                 const StepContext& ctx, Particles& p, PairList& L, const std::uint32_t* idx, const std::uint32_t* ia,
+                 const std::uint32_t* ib, const Separations& sep, const double* sep2, const double* rsums, long m,
+                 int me, int cur) {
   typename Law::Batch B;
   // One law for every pair (one material, the common case): its parameters in every lane, once.
   const std::uint32_t law0 = L.uniform_law;
@@ -44,7 +45,7 @@ void batch_chunk(const std::vector<typename Law::Params>& table, const std::vect
     const auto stage = [&](int e) {
       const long q = q0 + e;
       const std::uint32_t k = idx[q] & ~PairList::kCrossBit;
-      const std::uint32_t a = L.i[k], b = L.j[k];
+      const std::uint32_t a = ia[q], b = ib[q];
       B.dx[e] = sep.x[q], B.dy[e] = sep.y[q], B.dz[e] = sep.z[q];
       B.dist2[e] = sep2[q];
       B.rsum[e] = rsums[q];
@@ -68,7 +69,7 @@ void batch_chunk(const std::vector<typename Law::Params>& table, const std::vect
     int l0 = 0;
     // Eight lanes at a time by gathers where the build has AVX-512 (model/pair_filter.h: stage8).
     for (; l0 + 8 <= nb; l0 += 8)
-      if (!stage8(B, l0, idx + q0 + l0, sep, sep2, rsums, q0 + l0, p, L, cur))
+      if (!stage8(B, l0, idx + q0 + l0, ia + q0 + l0, ib + q0 + l0, sep, sep2, rsums, q0 + l0, p, L, cur))
         for (int l = l0; l < l0 + 8; ++l) stage(l);
     for (; l0 < nb; ++l0) stage(l0);
     if (law0 == PairList::kNone)
@@ -76,7 +77,7 @@ void batch_chunk(const std::vector<typename Law::Params>& table, const std::vect
     Law::force_batch(B, nb, ctx.dt);
     for (int e = 0; e < nb; ++e) {
       const std::uint32_t k = idx[q0 + e] & ~PairList::kCrossBit;
-      const std::uint32_t a = L.i[k], b = L.j[k];
+      const std::uint32_t a = ia[q0 + e], b = ib[q0 + e];
       // A pair of this thread's list that does not cross has both particles here.
       const bool cross_pair = Part && (idx[q0 + e] & PairList::kCrossBit) != 0;
       const bool own_a = !cross_pair || L.owner[a] == me;
@@ -122,14 +123,14 @@ void pair_chunk(const std::vector<typename Law::Params>& table, const std::vecto
   const long m = out.m;
   if constexpr (requires { Law::force_batch; }) {
     if (w == Law::history_size && rot && !spring_roll) {
-      batch_chunk<Law, Roll, Part>(table, rolling, ctx, p, L, idx, sep, sep2, rsums, m, me, cur);
+      batch_chunk<Law, Roll, Part>(table, rolling, ctx, p, L, idx, out.ia, out.ib, sep, sep2, rsums, m, me, cur);
       return;
     }
   }
   double scratch[kMaxHistory];
   for (long q = 0; q < m; ++q) {
     const std::uint32_t k = idx[q] & ~PairList::kCrossBit;
-    const std::uint32_t a = L.i[k], b = L.j[k];
+    const std::uint32_t a = out.ia[q], b = out.ib[q];
     const bool cross_pair = Part && (idx[q] & PairList::kCrossBit) != 0;
     const bool own_a = !cross_pair || L.owner[a] == me;
     const bool own_b = !cross_pair || L.owner[b] == me;

@@ -70,10 +70,13 @@ struct Separations {
   double x[N], y[N], z[N];
 };
 
-// Entries of the chunk's touching pairs, in pair order (out), kept by PairFilter.
+// Entries of the chunk's touching pairs, in pair order (out), kept by PairFilter, with both particles of each
+// (the filter has them in hand: the staging and the force sums then read them here, not from the pair list by
+// index).
 template <long N>
 struct FilterOut {
   std::uint32_t idx[N];
+  std::uint32_t ia[N], ib[N];
   Separations<N> sep;
   double sep2[N], rsums[N];
   long m = 0;
@@ -105,6 +108,7 @@ struct PairFilter {
     const bool touch = !(dist2 >= rsum * rsum);
     const long m = o.m;
     o.idx[m] = e;
+    o.ia[m] = a, o.ib[m] = b;
     o.sep.x[m] = d.x, o.sep.y[m] = d.y, o.sep.z[m] = d.z;
     o.sep2[m] = dist2;
     o.rsums[m] = rsum;
@@ -212,6 +216,8 @@ struct PairFilter {
       // next group or never read; m + 8 <= N): a compressing store to memory is microcoded on Intel cores,
       // and was ~20 % of the filter's samples on the bench bed.
       _mm256_storeu_si256(reinterpret_cast<__m256i*>(o.idx + m), _mm256_maskz_compress_epi32(touch, e));
+      _mm256_storeu_si256(reinterpret_cast<__m256i*>(o.ia + m), _mm256_maskz_compress_epi32(touch, a));
+      _mm256_storeu_si256(reinterpret_cast<__m256i*>(o.ib + m), _mm256_maskz_compress_epi32(touch, b));
       _mm512_storeu_pd(o.sep.x + m, _mm512_maskz_compress_pd(touch, dx));
       _mm512_storeu_pd(o.sep.y + m, _mm512_maskz_compress_pd(touch, dy));
       _mm512_storeu_pd(o.sep.z + m, _mm512_maskz_compress_pd(touch, dz));
@@ -248,18 +254,21 @@ struct PairFilter {
 
 // The pair pass's staging of eight touching pairs (entries e8[0 .. 8), chunk positions q .. q + 7 of the
 // filter's arrays) into lanes l0 .. l0 + 7 of a batch kernel's input B (a Law::Batch with HertzMindlin's
-// fields): separations, radii, R*, m*, both velocities and spins, the spring. Gathers, one store per field
-// instead of eight. A cross pair (a thread's part, buffer `cur`) takes both particles' velocities and spins
-// from their ghost copies and its spring from cross_hist[cur], as the one-at-a-time staging does. False
-// (nothing staged) where the build has no AVX-512: the caller stages them one at a time.
+// fields; a8, b8: the pairs' particles, as the filter kept them): separations, radii, R*, m*, both velocities and
+// spins, the spring. Gathers, one store per field instead of eight. A cross pair (a thread's part, buffer
+// `cur`) takes both particles' velocities and spins from their ghost copies and its spring from cross_hist[cur],
+// as the one-at-a-time staging does. False (nothing staged) where the build has no AVX-512: the caller stages
+// them one at a time.
 template <class Batch, long N>
-bool stage8(Batch& B, int l0, const std::uint32_t* e8, const Separations<N>& sep, const double* sep2,
-            const double* rsums, long q, const Particles& p, const PairList& L, int cur) {
+bool stage8(Batch& B, int l0, const std::uint32_t* e8, const std::uint32_t* a8, const std::uint32_t* b8,
+            const Separations<N>& sep, const double* sep2, const double* rsums, long q, const Particles& p,
+            const PairList& L, int cur) {
 #if defined(__AVX512F__) && defined(__AVX512VL__)
   const __m256i e = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(e8));
   const unsigned cm = static_cast<unsigned>(_mm256_movemask_ps(_mm256_castsi256_ps(e)));  // kCrossBit: sign bit
   const __m256i k = _mm256_and_si256(e, _mm256_set1_epi32(static_cast<int>(~PairList::kCrossBit)));
-  const __m256i a = gather_u32(k, L.i.data()), b = gather_u32(k, L.j.data());
+  const __m256i a = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(a8));
+  const __m256i b = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(b8));
   const __m256i a3 = times3(a), b3 = times3(b), k3 = times3(k);
   _mm512_storeu_pd(B.dx + l0, _mm512_loadu_pd(sep.x + q));
   _mm512_storeu_pd(B.dy + l0, _mm512_loadu_pd(sep.y + q));
@@ -300,7 +309,8 @@ bool stage8(Batch& B, int l0, const std::uint32_t* e8, const Separations<N>& sep
   }
   return true;
 #else
-  (void)B, (void)l0, (void)e8, (void)sep, (void)sep2, (void)rsums, (void)q, (void)p, (void)L, (void)cur;
+  (void)B, (void)l0, (void)e8, (void)a8, (void)b8, (void)sep, (void)sep2, (void)rsums, (void)q, (void)p, (void)L,
+      (void)cur;
   return false;
 #endif
 }

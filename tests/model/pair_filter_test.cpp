@@ -98,6 +98,11 @@ void check_chunk(const Setup& s, const std::uint32_t* ks, long q0, long q1, int 
   REQUIRE(oa.m == ob.m);
   for (long q = 0; q < oa.m; ++q) {
     CHECK(oa.idx[q] == ob.idx[q]);
+    const std::uint32_t k = ob.idx[q] & ~PairList::kCrossBit;
+    CHECK(oa.ia[q] == s.L.i[k]);
+    CHECK(oa.ib[q] == s.L.j[k]);
+    CHECK(ob.ia[q] == s.L.i[k]);
+    CHECK(ob.ib[q] == s.L.j[k]);
     CHECK(same_bits(oa.sep.x[q], ob.sep.x[q]));
     CHECK(same_bits(oa.sep.y[q], ob.sep.y[q]));
     CHECK(same_bits(oa.sep.z[q], ob.sep.z[q]));
@@ -148,7 +153,7 @@ TEST_CASE("pair filter: stage8 puts each pair's state in its lane, a cross pair'
   PairList L = s.L;
   PairFilter<false>{s.p, L, nullptr, 0, 0}.scalar(0, kN, o);
   REQUIRE(o.m >= 16);
-  const bool staged = stage8(B, 8, o.idx + 3, o.sep, o.sep2, o.rsums, 3, s.p, L, 0);
+  const bool staged = stage8(B, 8, o.idx + 3, o.ia + 3, o.ib + 3, o.sep, o.sep2, o.rsums, 3, s.p, L, 0);
 #if defined(__AVX512F__) && defined(__AVX512VL__)
   REQUIRE(staged);
 #else
@@ -196,7 +201,9 @@ TEST_CASE("pair filter: stage8 puts each pair's state in its lane, a cross pair'
     REQUIRE(e8.size() == 8);
     REQUIRE(std::count_if(e8.begin(), e8.end(), [](std::uint32_t e) { return (e & PairList::kCrossBit) != 0; }) >= 2);
     HertzMindlin::Batch C{};
-    REQUIRE(stage8(C, 0, e8.data(), o.sep, o.sep2, o.rsums, 0, s.p, L, cur));
+    std::vector<std::uint32_t> a8, b8;
+    for (std::uint32_t e : e8) a8.push_back(L.i[e & ~PairList::kCrossBit]), b8.push_back(L.j[e & ~PairList::kCrossBit]);
+    REQUIRE(stage8(C, 0, e8.data(), a8.data(), b8.data(), o.sep, o.sep2, o.rsums, 0, s.p, L, cur));
     for (int l = 0; l < 8; ++l) {
       const bool cross_pair = (e8[l] & PairList::kCrossBit) != 0;
       const std::uint32_t k = e8[l] & ~PairList::kCrossBit, a = L.i[k], b = L.j[k];
