@@ -117,20 +117,20 @@ void pair_chunk(const std::vector<typename Law::Params>& table, const std::vecto
   // The filter (model/pair_filter.h): the chunk's touching pairs, their separations and springs' state.
   FilterOut<kChunk> out;
   PairFilter<Part>{p, L, ks, me, cur}.run(q0, q1, out);
-  const std::uint32_t* idx = out.idx;
+  const std::uint32_t *idx = out.idx, *ia = out.ia, *ib = out.ib;
   const Separations& sep = out.sep;
   const double *sep2 = out.sep2, *rsums = out.rsums;
   const long m = out.m;
   if constexpr (requires { Law::force_batch; }) {
     if (w == Law::history_size && rot && !spring_roll) {
-      batch_chunk<Law, Roll, Part>(table, rolling, ctx, p, L, idx, out.ia, out.ib, sep, sep2, rsums, m, me, cur);
+      batch_chunk<Law, Roll, Part>(table, rolling, ctx, p, L, idx, ia, ib, sep, sep2, rsums, m, me, cur);
       return;
     }
   }
   double scratch[kMaxHistory];
   for (long q = 0; q < m; ++q) {
     const std::uint32_t k = idx[q] & ~PairList::kCrossBit;
-    const std::uint32_t a = out.ia[q], b = out.ib[q];
+    const std::uint32_t a = ia[q], b = ib[q];
     const bool cross_pair = Part && (idx[q] & PairList::kCrossBit) != 0;
     const bool own_a = !cross_pair || L.owner[a] == me;
     const bool own_b = !cross_pair || L.owner[b] == me;

@@ -51,7 +51,8 @@ inline __m512d asin8(__m512d x) {
   const __m512i xi = _mm512_castpd_si512(x);
   const __m512d a = _mm512_castsi512_pd(_mm512_maskz_andnot_epi64(0xff, sign, xi));
   const __mmask8 big = _mm512_cmp_pd_mask(a, _mm512_set1_pd(0.5), _CMP_GT_OQ);
-  const __m512d from_top = _mm512_maskz_sqrt_pd(0xff, _mm512_mul_pd(_mm512_set1_pd(0.5), _mm512_sub_pd(_mm512_set1_pd(1.0), a)));
+  const __m512d half_gap = _mm512_mul_pd(_mm512_set1_pd(0.5), _mm512_sub_pd(_mm512_set1_pd(1.0), a));
+  const __m512d from_top = _mm512_maskz_sqrt_pd(0xff, half_gap);
   const __m512d s = _mm512_mask_blend_pd(big, a, from_top);
   const __m512d z = _mm512_mul_pd(s, s);
   __m512d p = _mm512_set1_pd(kAsinP[14]);
@@ -60,8 +61,8 @@ inline __m512d asin8(__m512d x) {
   const __m512d top = _mm512_sub_pd(_mm512_set1_pd(kPio2Hi),
                                     _mm512_sub_pd(_mm512_mul_pd(_mm512_set1_pd(2.0), core), _mm512_set1_pd(kPio2Lo)));
   const __m512d r = _mm512_mask_blend_pd(big, core, top);
-  const __m512i ri = _mm512_castpd_si512(r);
-  return _mm512_castsi512_pd(_mm512_or_si512(_mm512_maskz_andnot_epi64(0xff, sign, ri), _mm512_and_si512(sign, xi)));  // copysign(r, x)
+  const __m512i ri = _mm512_castpd_si512(r);  // copysign(r, x):
+  return _mm512_castsi512_pd(_mm512_or_si512(_mm512_maskz_andnot_epi64(0xff, sign, ri), _mm512_and_si512(sign, xi)));
 }
 #endif
 

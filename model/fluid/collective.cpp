@@ -56,23 +56,24 @@ void chord_integrals(double y_lo, double step, long row0, long n, double c, doub
 #if defined(__AVX512F__)
   const __m512d lane = _mm512_setr_pd(0, 1, 2, 3, 4, 5, 6, 7), v_lo = _mm512_set1_pd(y_lo);
   const __m512d v_step = _mm512_set1_pd(step), v_c = _mm512_set1_pd(c), v_r = _mm512_set1_pd(r);
-  const __m512d v_mr = _mm512_set1_pd(-r), v_rr = _mm512_set1_pd(rr), zero = _mm512_setzero_pd();
-  const __m512d one = _mm512_set1_pd(1.0), m_one = _mm512_set1_pd(-1.0);
+  const __m512d v_mr = _mm512_set1_pd(-r), v_rr = _mm512_set1_pd(rr);
   for (; j < n; j += 8) {  // (lanes past n: further boundaries, finite and unused, inside the arrays)
     const __m512d row = _mm512_add_pd(_mm512_set1_pd(static_cast<double>(row0 + j)), lane);  // exact integers
     const __m512d u = _mm512_sub_pd(_mm512_add_pd(v_lo, _mm512_mul_pd(row, v_step)), v_c);
     const __m512d t = _mm512_maskz_min_pd(0xff, _mm512_maskz_max_pd(0xff, u, v_mr), v_r);
-    const __m512d q = _mm512_maskz_min_pd(0xff, _mm512_maskz_max_pd(0xff, _mm512_div_pd(t, v_r), m_one), one);
-    const __m512d root = _mm512_maskz_sqrt_pd(0xff, _mm512_maskz_max_pd(0xff, _mm512_sub_pd(v_rr, _mm512_mul_pd(t, t)), zero));
+    const __m512d root = _mm512_maskz_sqrt_pd(0xff, _mm512_sub_pd(v_rr, _mm512_mul_pd(t, t)));
     _mm512_store_pd(cl + j, t);
-    _mm512_store_pd(prim + j, _mm512_add_pd(_mm512_mul_pd(t, root), _mm512_mul_pd(v_rr, asin8(q))));
+    const __m512d area = _mm512_mul_pd(v_rr, asin8(_mm512_div_pd(t, v_r)));
+    _mm512_store_pd(prim + j, _mm512_add_pd(_mm512_mul_pd(t, root), area));
   }
 #endif
+  // (|t| <= r, and rounding is monotonic: t t <= r r and |t / r| <= 1, so neither the root's argument nor the
+  // asin's needs a clamp of its own.)
   for (; j < n; ++j) {
     const double u = y_lo + static_cast<double>(row0 + j) * step - c;
     const double t = std::min(std::max(u, -r), r);
     cl[j] = t;
-    prim[j] = t * std::sqrt(std::max(0.0, rr - t * t)) + rr * asin_poly(std::clamp(t / r, -1.0, 1.0));
+    prim[j] = t * std::sqrt(rr - t * t) + rr * asin_poly(t / r);
   }
 }
 
