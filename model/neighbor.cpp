@@ -105,10 +105,8 @@ void NeighborSearch::build(const std::vector<Vec3>& x, const std::vector<double>
                            CandidatePairs& out, const Team& t, const std::function<void(const Team&)>& side) {
   const std::size_t n = x.size();
   if (n < 2) {
-    if (t.me == 0)
-      out.i.clear(), out.j.clear();
-    else if (side)
-      side(Team{t.me - 1, t.size - 1, nullptr});
+    if (t.me == 0) out.i.clear(), out.j.clear();
+    if (side && t.size > 1) side(Team{t.me, t.size, nullptr});
     return;
   }
   // Six phases, five syncs of the team (no libgomp region or barrier: on this 2-core VM a sleeping
@@ -136,10 +134,14 @@ void NeighborSearch::build(const std::vector<Vec3>& x, const std::vector<double>
   t.sync();
   boxes_[static_cast<std::size_t>(t.me)] = box;
   t.sync();
-  if (t.me == 0)
-    set_up(x, radius, skin);
-  else if (side)
-    side(Team{t.me - 1, t.size - 1, nullptr});
+  if (t.me == 0) set_up(x, radius, skin, t.size);
+  t.sync();
+  count_cells(x, t.me, k0, k1);
+  t.sync();
+  if (t.me == 0) place_cells(t.size);
+  t.sync();
+  fill_cells(x, radius, t.me, k0, k1);
+  if (side && t.size > 1) side(Team{t.me, t.size, nullptr});
   t.sync();
   const Vec3 lo{boxes_[0][0], boxes_[0][1], boxes_[0][2]};
   // Each thread its own run of chunks first (model/parallel.h: WorkQueue); the pairs do not depend on which
@@ -161,8 +163,9 @@ void NeighborSearch::build(const std::vector<Vec3>& x, const std::vector<double>
   }
 }
 
-// The union of the threads' boxes (into boxes_[0]), the size levels, their grids and the counting sort.
-void NeighborSearch::set_up(const std::vector<Vec3>& x, const std::vector<double>& radius, double skin) {
+// The union of the threads' boxes (into boxes_[0]), the size levels and their grids (one thread): the
+// counting sort of the particles into them follows in count_cells, place_cells and fill_cells.
+void NeighborSearch::set_up(const std::vector<Vec3>& x, const std::vector<double>& radius, double skin, int threads) {
   const std::size_t n = x.size();
   std::array<double, 6>& u = boxes_[0];
   for (const auto& b : boxes_) {
@@ -171,7 +174,8 @@ void NeighborSearch::set_up(const std::vector<Vec3>& x, const std::vector<double
   }
   const Vec3 lo{u[0], u[1], u[2]}, hi{u[3], u[4], u[5]};
   // Size classes of a factor 2 in radius: level = floor(log2(r / r_min)); one level for ratios < 2.
-  // Radii do not change during a run: recomputed only when they differ from the last build's.
+  // Radii do not change during a run: the levels, their counts and largest radii are recomputed only when
+  // the radii differ from the last build's.
   if (radius_ != radius) {
     radius_ = radius;
     double rmin = radius[0];
@@ -181,23 +185,25 @@ void NeighborSearch::set_up(const std::vector<Vec3>& x, const std::vector<double
       level_of_[k] = std::min(30, static_cast<int>(std::floor(std::log2(radius[k] / rmin))));
       nlev_ = std::max(nlev_, level_of_[k] + 1);
     }
+    lev_.resize(static_cast<std::size_t>(nlev_));
+    for (Level& L : lev_) {
+      L.rmax = 0.0;
+      L.count = 0;
+    }
+    for (std::size_t k = 0; k < n; ++k) {
+      Level& L = lev_[static_cast<std::size_t>(level_of_[k])];
+      L.rmax = std::max(L.rmax, radius[k]);
+      ++L.count;
+    }
   }
-  lev_.resize(static_cast<std::size_t>(nlev_));
-  for (Level& L : lev_) {
-    L.rmax = 0.0;
-    L.count = 0;
-  }
-  for (std::size_t k = 0; k < n; ++k) {
-    Level& L = lev_[static_cast<std::size_t>(level_of_[k])];
-    L.rmax = std::max(L.rmax, radius[k]);
-    ++L.count;
-  }
+  cells_ = 0;
   for (Level& L : lev_) {
     L.sorted.resize(L.count);
     L.xs.resize(L.count);
     L.ys.resize(L.count);
     L.zs.resize(L.count);
     L.rs.resize(L.count);
+    L.first = cells_;
     if (L.count == 0) {
       L.start.assign(2, 0);
       continue;
@@ -212,38 +218,68 @@ void NeighborSearch::set_up(const std::vector<Vec3>& x, const std::vector<double
     };
     while (cells(L.cell) > kCellsPerParticle * static_cast<double>(L.count) + 64.0) L.cell *= 1.5;
     L.inv = 1.0 / L.cell;
-    L.start.assign(static_cast<std::size_t>(L.dim[0] * L.dim[1] * L.dim[2]) + 1, 0);
+    L.start.resize(static_cast<std::size_t>(L.dim[0] * L.dim[1] * L.dim[2]) + 1);
+    cells_ += L.start.size() - 1;
   }
-  // Counting sort per level, stable (ascending index inside a cell): count into start[c], running sums
-  // (start[c]: the end of cell c), then fill from the last particle down with start[c] as the cursor, which
-  // leaves start[c] at the beginning of cell c. (Counting into start[c + 1] and filling upwards needs a
-  // shift of the whole array back by one cell: a pass over a tall pour's ~1 M cells at every rebuild.)
+  count_.resize(static_cast<std::size_t>(threads));
+}
+
+// The counting sort of particles k0 .. k1 (a thread's share) into the levels' cells, in three phases with a
+// team sync between them: each thread counts its share's particles per cell into its own count_ (and keeps
+// each particle's cell), one thread turns the counts into every cell's start and each thread's cursor in it,
+// then each thread places its share. A cell holds the particles in ascending index (thread 0's share first,
+// each share ascending): the same order as the one-thread sort, so the same pairs in the same order. (One
+// thread sorted all of them while the other waited: at 2 threads this serial phase was ~21 % of the 52k
+// bench pour's rebuild, and it read the other thread's positions from its cache.)
+void NeighborSearch::count_cells(const std::vector<Vec3>& x, int me, long k0, long k1) {
+  std::vector<std::uint32_t>& count = count_[static_cast<std::size_t>(me)];
+  count.assign(cells_, 0);
+  const Vec3 lo{boxes_[0][0], boxes_[0][1], boxes_[0][2]};
   if (nlev_ == 1) {
     // One level (sizes within a factor 2: most scenes): the cells without the per-particle level, in a loop of
     // their own that the compiler vectorises, then the counts.
     const Level& L = lev_[0];
     const double* X = &x[0].x;  // x, y, z of particle k at 3 k .. 3 k + 2
     std::uint32_t* cell = cell_id_.data();
-    for (std::size_t k = 0; k < n; ++k) {
+    for (long k = k0; k < k1; ++k) {
       const long cx = L.clamp_cell(X[3 * k] - lo.x, 0), cy = L.clamp_cell(X[3 * k + 1] - lo.y, 1);
       cell[k] = static_cast<std::uint32_t>(L.index(cx, cy, L.clamp_cell(X[3 * k + 2] - lo.z, 2)));
     }
-    for (std::size_t k = 0; k < n; ++k) ++lev_[0].start[cell[k]];
+    for (long k = k0; k < k1; ++k) ++count[cell[k]];
   } else {
-    for (std::size_t k = 0; k < n; ++k) {
-      Level& L = lev_[static_cast<std::size_t>(level_of_[k])];
-      cell_id_[k] = static_cast<std::uint32_t>(L.index(L.clamp_cell(x[k].x - lo.x, 0), L.clamp_cell(x[k].y - lo.y, 1),
-                                                       L.clamp_cell(x[k].z - lo.z, 2)));
-      ++L.start[cell_id_[k]];
+    for (long k = k0; k < k1; ++k) {
+      const Level& L = lev_[static_cast<std::size_t>(level_of_[static_cast<std::size_t>(k)])];
+      const auto c = static_cast<std::uint32_t>(
+          L.index(L.clamp_cell(x[k].x - lo.x, 0), L.clamp_cell(x[k].y - lo.y, 1), L.clamp_cell(x[k].z - lo.z, 2)));
+      cell_id_[static_cast<std::size_t>(k)] = c;
+      ++count[L.first + c];
     }
   }
+}
+
+void NeighborSearch::place_cells(int threads) {
   for (Level& L : lev_) {
+    if (L.count == 0) continue;
     const std::size_t cells = L.start.size() - 1;
-    for (std::size_t c = 1; c < cells; ++c) L.start[c] += L.start[c - 1];
-    L.start[cells] = static_cast<std::uint32_t>(L.count);
+    std::uint32_t run = 0;
+    for (std::size_t c = 0; c < cells; ++c) {
+      L.start[c] = run;
+      for (int t = 0; t < threads; ++t) {
+        std::uint32_t& slot = count_[static_cast<std::size_t>(t)][L.first + c];
+        const std::uint32_t here = slot;
+        slot = run;  // thread t's cursor in cell c
+        run += here;
+      }
+    }
+    L.start[cells] = run;
   }
+}
+
+void NeighborSearch::fill_cells(const std::vector<Vec3>& x, const std::vector<double>& radius, int me, long k0,
+                                long k1) {
+  std::vector<std::uint32_t>& cursor = count_[static_cast<std::size_t>(me)];
   const auto fill = [&](Level& L, std::size_t k) {
-    const std::uint32_t s = --L.start[cell_id_[k]];
+    const std::uint32_t s = cursor[L.first + cell_id_[k]]++;
     L.sorted[s] = static_cast<std::uint32_t>(k);
     L.xs[s] = x[k].x;
     L.ys[s] = x[k].y;
@@ -252,9 +288,10 @@ void NeighborSearch::set_up(const std::vector<Vec3>& x, const std::vector<double
     slot_[k] = s;
   };
   if (nlev_ == 1)
-    for (std::size_t k = n; k-- > 0;) fill(lev_[0], k);
+    for (long k = k0; k < k1; ++k) fill(lev_[0], static_cast<std::size_t>(k));
   else
-    for (std::size_t k = n; k-- > 0;) fill(lev_[static_cast<std::size_t>(level_of_[k])], k);
+    for (long k = k0; k < k1; ++k)
+      fill(lev_[static_cast<std::size_t>(level_of_[static_cast<std::size_t>(k)])], static_cast<std::size_t>(k));
 }
 
 // The pairs found by the finders of chunk c (particles c kFinders .. (c + 1) kFinders), in scan order.

@@ -39,9 +39,9 @@ class NeighborSearch {
   void build(const std::vector<Vec3>& x, const std::vector<double>& radius, double skin, CandidatePairs& out,
              int threads);
   // The same, run by every thread of a team inside its parallel region (model/parallel.h); `out` is
-  // complete after the team's next sync. side: work for the other threads while thread 0 sorts the
-  // particles into the grids (a serial phase), as a team of the threads 1 .. size - 1 that must not sync;
-  // not run by a one-thread team.
+  // complete after the team's next sync. side: other work shared by the whole team (a Team that must not
+  // sync: each thread its range) after the particles are sorted into the grids, before the search; not run
+  // by a one-thread team.
   void build(const std::vector<Vec3>& x, const std::vector<double>& radius, double skin, CandidatePairs& out,
              const Team& team, const std::function<void(const Team&)>& side = {});
 
@@ -55,6 +55,7 @@ class NeighborSearch {
     // Positions (one array per axis) and radii in cell order: the search scans them contiguously (the same
     // pairs in the same order as through `sorted`, fewer cache misses), several candidates per instruction.
     std::vector<double> xs, ys, zs, rs;
+    std::size_t first = 0;  // its first cell in the counting sort's arrays of all levels' cells (count_)
     long clamp_cell(double v, int axis) const;
     std::size_t index(long cx, long cy, long cz) const {
       return static_cast<std::size_t>((cz * dim[1] + cy) * dim[0] + cx);
@@ -81,7 +82,12 @@ class NeighborSearch {
   std::vector<std::array<double, 6>> boxes_;  // per thread: the bounding box (min xyz, max xyz) of its share
   WorkQueue queue_;                           // the search's chunks among the team
 
-  void set_up(const std::vector<Vec3>& x, const std::vector<double>& radius, double skin);
+  std::size_t cells_ = 0;                          // all levels' cells
+  std::vector<std::vector<std::uint32_t>> count_;  // per thread and cell: its particles, then its cursor
+  void set_up(const std::vector<Vec3>& x, const std::vector<double>& radius, double skin, int threads);
+  void count_cells(const std::vector<Vec3>& x, int me, long k0, long k1);
+  void place_cells(int threads);
+  void fill_cells(const std::vector<Vec3>& x, const std::vector<double>& radius, int me, long k0, long k1);
   void search_chunk(std::size_t c, const std::vector<Vec3>& x, const std::vector<double>& radius, double skin,
                     const Vec3& lo);
 };

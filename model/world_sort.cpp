@@ -82,8 +82,8 @@ void World::rebuild_lists(int threads) {
   // The search, the pair list, the wall lists and the partition in one team, synced by the yielding
   // barrier: as separate libgomp regions (about ten regions and barriers per rebuild) the second thread
   // slept and woke at each under OMP_WAIT_POLICY=passive, and the 2-thread pour's rebuilds took as long as
-  // on one thread (issue 19). The serial parts overlap: while thread 0 sorts the particles into the
-  // search's grids, the others flag the wall candidates; while it partitions, thread 1 lays out the wall
+  // on one thread (issue 19). The team sorts the particles into the search's grids and flags the wall
+  // candidates (model/neighbor.h: side) together; while thread 0 partitions, thread 1 lays out the wall
   // lists, keeps the positions of this build and computes the shift velocity (model/motion.h).
   const std::size_t n = p_.size();
   std::exception_ptr failure;

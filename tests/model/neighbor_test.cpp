@@ -59,11 +59,15 @@ TEST_CASE("neighbor: the list and its order do not depend on the thread count, n
     NeighborSearch fresh, kept;
     fresh.build(x, r, skin, one, 1);
     CHECK(one.i.size() > 1000);
-    // A build with other positions first, then this one, on 2 and 3 threads: the same pairs in the same order.
-    std::vector<Vec3> moved = x;
+    // A build of other spheres (other count and sizes: other levels), one with other positions, then this
+    // one, on 2 and 3 threads (each thread sorts its share into the cells): the same pairs in the same order.
+    std::vector<Vec3> moved = x, other_x;
+    std::vector<double> other_r;
     for (Vec3& q : moved) q.z += 0.01;
+    cloud(13, 2000, {0.03, 0.03, 0.02}, 43.0 - ratio, other_x, other_r);
     for (int threads : {2, 3}) {
       CAPTURE(threads);
+      kept.build(other_x, other_r, skin, reused, threads);
       kept.build(moved, r, skin, reused, threads);
       kept.build(x, r, skin, reused, threads);
       CHECK(reused.i == one.i);
