@@ -91,7 +91,7 @@ bool scan_is_vectorized() { return false; }
 
 long NeighborSearch::Level::clamp_cell(double v, int axis) const {
   // Clamped in double, then converted: a cell for any v (NaN: 0), and a form the compiler vectorises in
-  // set_up's loop over the particles (a clamp of the converted long it did not vectorise).
+  // count_cells's loop over the particles (a clamp of the converted long it did not vectorise).
   return static_cast<long>(std::min(std::max(0.0, std::floor(v * inv)), static_cast<double>(dim[axis] - 1)));
 }
 
@@ -109,11 +109,11 @@ void NeighborSearch::build(const std::vector<Vec3>& x, const std::vector<double>
     if (side && t.size > 1) side(Team{t.me, t.size, nullptr});
     return;
   }
-  // Six phases, five syncs of the team (no libgomp region or barrier: on this 2-core VM a sleeping
-  // thread takes tens of us to wake, and a pour rebuilds every ~8 steps): each thread's bounding box of
-  // its share, their union and the set-up in thread 0 (size levels, grids, counting sort: linear, a
-  // fraction of the search), the search of the finder chunks (a WorkQueue), the chunks' offsets in
-  // thread 0, then each thread copies its chunks into `out` (the caller syncs before reading it).
+  // Nine phases, eight syncs of the team (no libgomp region or barrier: on this 2-core VM a sleeping
+  // thread takes tens of us to wake, and a pour rebuilds every ~8 steps): thread 0 sizes the buffers; each
+  // thread's bounding box of its share; their union, the size levels and the grids in thread 0; the
+  // counting sort's three phases (count_cells); the search of the finder chunks (a WorkQueue); the chunks'
+  // offsets in thread 0; then each thread copies its chunks into `out` (the caller syncs before reading it).
   long k0 = 0, k1 = 0;
   t.range(static_cast<long>(n), k0, k1);
   std::array<double, 6> box{x[0].x, x[0].y, x[0].z, x[0].x, x[0].y, x[0].z};
