@@ -3,11 +3,12 @@
 // touch: it keeps each touching pair's list entry, separation x_j - x_i (m), squared distance (m^2) and
 // R_i + R_j (m) in pair order, sets the pairs' touching flags and zeroes the springs of the contacts that
 // just opened. stage8 loads eight touching pairs' state into a batch kernel's lanes. With AVX-512 both take
-// eight pairs at a time (gathers, one compare, compressed stores); one at a time, the filter was about half
+// eight pairs at a time (the spheres' state by loads and a transpose, rows8; one compare, compressed
+// stores); one at a time, the filter was about half
 // of the pair pass's samples in chapter-7 test 1 (perf, 2 threads; three candidates in four do not touch)
 // and the loads of both spheres' radii, velocities and spins a third of the settled bed's. Interleaved A/B
 // against the one-at-a-time build (issue 19, bench/README.md): bench bed, 1 thread, contact stage 1.53 ->
-// 1.16 s. Both forms give the same bits: the same subtractions, squares and sums per pair, the same entries in
+// 1.16 s; the gathers replaced by rows8 and load8_pd: see rows8. Both forms give the same bits: the same subtractions, squares and sums per pair, the same entries in
 // the same order (tests/model/pair_filter_test.cpp, scripts/bitwise_check.sh).
 #pragma once
 
@@ -23,21 +24,44 @@
 namespace pastemix::model {
 
 #if defined(__AVX512F__) && defined(__AVX512VL__)
-// 3 i per lane (the Vec3 arrays' double index): a shift and an add, not a 10-cycle multiply.
-inline __m256i times3(__m256i i) { return _mm256_add_epi32(i, _mm256_slli_epi32(i, 1)); }
-// Gathers of all eight lanes (the masked forms: the plain ones start from an undefined register, which GCC 12
-// warns of).
+// Gathers of all eight lanes (a group with a cross pair: its indices and R_i + R_j by pair). The masked
+// forms: the plain ones start from an undefined register, which GCC 12 warns of.
 inline __m512d gather_pd(__m256i at, const double* base) {
   return _mm512_mask_i32gather_pd(_mm512_setzero_pd(), 0xff, at, base, 8);
 }
 inline __m256i gather_u32(__m256i at, const std::uint32_t* base) {
   return _mm256_mmask_i32gather_epi32(_mm256_setzero_si256(), 0xff, at, base, 4);
 }
-// The three components of the Vec3 array `v` (as doubles) at the lanes' indices times 3, into x, y, z + l0.
-inline void gather_vec3(__m256i at3, const double* v, double* x, double* y, double* z, int l0) {
-  _mm512_storeu_pd(x + l0, gather_pd(at3, v));
-  _mm512_storeu_pd(y + l0, gather_pd(at3, v + 1));
-  _mm512_storeu_pd(z + l0, gather_pd(at3, v + 2));
+// Eight rows of three doubles (row l at at(l): a Vec3 array's element, a ghost copy's x, v or w, a pair's
+// spring) as one register per component: eight masked 256-bit loads (three lanes each, so never past a row's
+// end) and a transpose. On this project's Zen 5 VM one 8-lane gather costs ~2.4 ns (~12 cycles); the loads and
+// shuffles take less than half of it (a probe of the filter's x loads on a 65k-sphere list: 1.87 -> 0.83 ns
+// per pair). Data movement only: the values three gathers would give.
+template <class At>
+inline void rows8(const At& at, __m512d& x, __m512d& y, __m512d& z) {
+  const auto two = [&](int l) {
+    return _mm512_maskz_insertf64x4(0xff, _mm512_maskz_loadu_pd(0x7, at(l)), _mm256_maskz_loadu_pd(0x7, at(l + 4)), 1);
+  };
+  // t_l = [row l | row l+4] (x y z 0 x y z 0); unpacks pair rows l and l+1 per 128-bit lane. (The maskz forms:
+  // GCC 12's plain ones start from an undefined register and warn.)
+  const __m512d t0 = two(0), t1 = two(1), t2 = two(2), t3 = two(3);
+  const __m512d xz01 = _mm512_maskz_unpacklo_pd(0xff, t0, t1), y01 = _mm512_maskz_unpackhi_pd(0xff, t0, t1);
+  const __m512d xz23 = _mm512_maskz_unpacklo_pd(0xff, t2, t3), y23 = _mm512_maskz_unpackhi_pd(0xff, t2, t3);
+  const __m512i lo = _mm512_setr_epi64(0, 1, 8, 9, 4, 5, 12, 13), hi = _mm512_setr_epi64(2, 3, 10, 11, 6, 7, 14, 15);
+  x = _mm512_permutex2var_pd(xz01, lo, xz23);
+  y = _mm512_permutex2var_pd(y01, lo, y23);
+  z = _mm512_permutex2var_pd(xz01, hi, xz23);
+}
+// Rows base + 3 id[l] (a Vec3 array, or a width-3 spring array).
+inline void load_rows8(const double* base, const std::uint32_t* id, __m512d& x, __m512d& y, __m512d& z) {
+  rows8([&](int l) { return base + 3 * static_cast<std::size_t>(id[l]); }, x, y, z);
+}
+// Eight doubles base[id[l]] by scalar loads and inserts (a third less than one gather on the same probe).
+inline __m512d load8_pd(const double* base, const std::uint32_t* id) {
+  const auto two = [&](int l) { return _mm_loadh_pd(_mm_load_sd(base + id[l]), base + id[l + 1]); };
+  const __m256d lo = _mm256_insertf128_pd(_mm256_castpd128_pd256(two(0)), two(2), 1);
+  const __m256d hi = _mm256_insertf128_pd(_mm256_castpd128_pd256(two(4)), two(6), 1);
+  return _mm512_maskz_insertf64x4(0xff, _mm512_castpd256_pd512(lo), hi, 1);
 }
 
 // Where a group of eight pairs has cross pairs (lanes cm): those lanes read both particles' state from the
@@ -45,21 +69,27 @@ inline void gather_vec3(__m256i at3, const double* v, double* x, double* y, doub
 struct Ghosts {
   static_assert(sizeof(PairList::Ghost) == 9 * sizeof(double));
   const double* G;
-  __mmask8 cm;
-  __m256i ga9, gb9;  // 9 x ghost slot of the lanes' i and j (cross lanes only)
-  Ghosts(const PairList& L, int cur, unsigned cross_lanes, __m256i a, __m256i b)
-      : G(reinterpret_cast<const double*>(L.ghost[cur].data())), cm(static_cast<__mmask8>(cross_lanes)) {
-    const auto nine = [](__m256i g) { return _mm256_add_epi32(_mm256_slli_epi32(g, 3), g); };
-    ga9 = nine(_mm256_mmask_i32gather_epi32(_mm256_setzero_si256(), cm, a, L.ghost_of.data(), 4));
-    gb9 = nine(_mm256_mmask_i32gather_epi32(_mm256_setzero_si256(), cm, b, L.ghost_of.data(), 4));
+  unsigned cm;
+  alignas(32) std::uint32_t a[8], b[8];
+  std::uint32_t ga[8], gb[8];  // 9 x ghost slot of the lanes' i and j (cross lanes only)
+  Ghosts(const PairList& L, int cur, unsigned cross_lanes, __m256i a8, __m256i b8)
+      : G(reinterpret_cast<const double*>(L.ghost[cur].data())), cm(cross_lanes) {
+    _mm256_store_si256(reinterpret_cast<__m256i*>(a), a8);
+    _mm256_store_si256(reinterpret_cast<__m256i*>(b), b8);
+    for (int l = 0; l < 8; ++l) {
+      const bool cross = (cm >> l) & 1u;
+      ga[l] = cross ? 9 * L.ghost_of[a[l]] : 0;
+      gb[l] = cross ? 9 * L.ghost_of[b[l]] : 0;
+    }
   }
-  // Component `off` of the Ghost (0-2 x, 3-5 v, 6-8 w) of i (or j) in the cross lanes, base[at3] elsewhere.
-  __m512d pick(bool of_j, __m256i at3, const double* base, int off) const {
-    const __m512d here = _mm512_mask_i32gather_pd(_mm512_setzero_pd(), static_cast<__mmask8>(~cm), at3, base, 8);
-    return _mm512_mask_i32gather_pd(here, cm, of_j ? gb9 : ga9, G + off, 8);
+  // Component rows at `off` of the Ghost (0 x, 3 v, 6 w) of i (of_j false) or j in the cross lanes, the Vec3
+  // array `base` elsewhere.
+  void rows(bool of_j, const double* base, int off, __m512d& x, __m512d& y, __m512d& z) const {
+    const std::uint32_t* id = of_j ? b : a;
+    const std::uint32_t* g = of_j ? gb : ga;
+    rows8([&](int l) { return ((cm >> l) & 1u) ? G + g[l] + off : base + 3 * static_cast<std::size_t>(id[l]); }, x,
+          y, z);
   }
-  __m512d a_or(__m256i a3, const double* base, int off) const { return pick(false, a3, base, off); }
-  __m512d b_or(__m256i b3, const double* base, int off) const { return pick(true, b3, base, off); }
 };
 #endif
 
@@ -192,19 +222,28 @@ struct PairFilter {
         b = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(L.j.data() + q));
         rsum = _mm512_loadu_pd(L.rsum.data() + q);
       }
-      const __m256i a3 = times3(a), b3 = times3(b);
       __m512d dx, dy, dz;
       if (cm == 0) {
-        dx = _mm512_sub_pd(gather_pd(b3, X), gather_pd(a3, X));
-        dy = _mm512_sub_pd(gather_pd(b3, X + 1), gather_pd(a3, X + 1));
-        dz = _mm512_sub_pd(gather_pd(b3, X + 2), gather_pd(a3, X + 2));
+        // Both positions by loads (load_rows8), the indices from the list where the pairs are consecutive.
+        alignas(32) std::uint32_t a8[8], b8[8];
+        const std::uint32_t *ia = L.i.data() + k0, *ib = L.j.data() + k0;
+        if (!consecutive) {
+          _mm256_store_si256(reinterpret_cast<__m256i*>(a8), a);
+          _mm256_store_si256(reinterpret_cast<__m256i*>(b8), b);
+          ia = a8, ib = b8;
+        }
+        __m512d xa, ya, za, xb, yb, zb;
+        load_rows8(X, ia, xa, ya, za);
+        load_rows8(X, ib, xb, yb, zb);
+        dx = _mm512_sub_pd(xb, xa), dy = _mm512_sub_pd(yb, ya), dz = _mm512_sub_pd(zb, za);
       } else {
         // A cross pair's two positions from their ghost copies (Ghost: x, v, w, nine doubles), as one() reads
         // them; the other lanes' from the store.
         const Ghosts g{L, cur, cm, a, b};
-        dx = _mm512_sub_pd(g.b_or(b3, X, 0), g.a_or(a3, X, 0));
-        dy = _mm512_sub_pd(g.b_or(b3, X + 1, 1), g.a_or(a3, X + 1, 1));
-        dz = _mm512_sub_pd(g.b_or(b3, X + 2, 2), g.a_or(a3, X + 2, 2));
+        __m512d xa, ya, za, xb, yb, zb;
+        g.rows(false, X, 0, xa, ya, za);
+        g.rows(true, X, 0, xb, yb, zb);
+        dx = _mm512_sub_pd(xb, xa), dy = _mm512_sub_pd(yb, ya), dz = _mm512_sub_pd(zb, za);
       }
       // norm2: (dx dx + dy dy) + dz dz, no fused multiply-add (the build's -ffp-contract=off).
       const __m512d dist2 =
@@ -266,47 +305,47 @@ bool stage8(Batch& B, int l0, const std::uint32_t* e8, const std::uint32_t* a8, 
 #if defined(__AVX512F__) && defined(__AVX512VL__)
   const __m256i e = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(e8));
   const unsigned cm = static_cast<unsigned>(_mm256_movemask_ps(_mm256_castsi256_ps(e)));  // kCrossBit: sign bit
-  const __m256i k = _mm256_and_si256(e, _mm256_set1_epi32(static_cast<int>(~PairList::kCrossBit)));
-  const __m256i a = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(a8));
-  const __m256i b = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(b8));
-  const __m256i a3 = times3(a), b3 = times3(b), k3 = times3(k);
+  // The pair indices (without a cross pair the entries themselves).
+  alignas(32) std::uint32_t k8[8];
+  _mm256_store_si256(reinterpret_cast<__m256i*>(k8),
+                     _mm256_and_si256(e, _mm256_set1_epi32(static_cast<int>(~PairList::kCrossBit))));
   _mm512_storeu_pd(B.dx + l0, _mm512_loadu_pd(sep.x + q));
   _mm512_storeu_pd(B.dy + l0, _mm512_loadu_pd(sep.y + q));
   _mm512_storeu_pd(B.dz + l0, _mm512_loadu_pd(sep.z + q));
   _mm512_storeu_pd(B.dist2 + l0, _mm512_loadu_pd(sep2 + q));
   _mm512_storeu_pd(B.rsum + l0, _mm512_loadu_pd(rsums + q));
-  _mm512_storeu_pd(B.ra + l0, gather_pd(a, p.radius.data()));
-  _mm512_storeu_pd(B.rb + l0, gather_pd(b, p.radius.data()));
-  _mm512_storeu_pd(B.r_star + l0, gather_pd(k, L.r_star.data()));
-  _mm512_storeu_pd(B.m_star + l0, gather_pd(k, L.m_star.data()));
+  _mm512_storeu_pd(B.ra + l0, load8_pd(p.radius.data(), a8));
+  _mm512_storeu_pd(B.rb + l0, load8_pd(p.radius.data(), b8));
+  _mm512_storeu_pd(B.r_star + l0, load8_pd(L.r_star.data(), k8));
+  _mm512_storeu_pd(B.m_star + l0, load8_pd(L.m_star.data(), k8));
   const double* V = &p.v[0].x;
   const double* W = &p.omega[0].x;
   const double* H = L.history.data();
+  const auto store = [&](double* x, double* y, double* z, const __m512d& rx, const __m512d& ry, const __m512d& rz) {
+    _mm512_storeu_pd(x + l0, rx), _mm512_storeu_pd(y + l0, ry), _mm512_storeu_pd(z + l0, rz);
+  };
+  __m512d rx, ry, rz;
   if (cm == 0) {
-    gather_vec3(a3, V, B.vax, B.vay, B.vaz, l0);
-    gather_vec3(b3, V, B.vbx, B.vby, B.vbz, l0);
-    gather_vec3(a3, W, B.wax, B.way, B.waz, l0);
-    gather_vec3(b3, W, B.wbx, B.wby, B.wbz, l0);
-    gather_vec3(k3, H, B.hx, B.hy, B.hz, l0);
+    load_rows8(V, a8, rx, ry, rz), store(B.vax, B.vay, B.vaz, rx, ry, rz);
+    load_rows8(V, b8, rx, ry, rz), store(B.vbx, B.vby, B.vbz, rx, ry, rz);
+    load_rows8(W, a8, rx, ry, rz), store(B.wax, B.way, B.waz, rx, ry, rz);
+    load_rows8(W, b8, rx, ry, rz), store(B.wbx, B.wby, B.wbz, rx, ry, rz);
+    load_rows8(H, k8, rx, ry, rz), store(B.hx, B.hy, B.hz, rx, ry, rz);
     return true;
   }
-  const Ghosts g{L, cur, cm, a, b};
-  double* va[3] = {B.vax, B.vay, B.vaz};
-  double* vb[3] = {B.vbx, B.vby, B.vbz};
-  double* wa[3] = {B.wax, B.way, B.waz};
-  double* wb[3] = {B.wbx, B.wby, B.wbz};
-  double* hs[3] = {B.hx, B.hy, B.hz};
-  // The cross lanes' springs: slot cross[k] of cross_hist[cur], three doubles each.
-  const __m256i c3 = times3(_mm256_mmask_i32gather_epi32(_mm256_setzero_si256(), g.cm, k, L.cross.data(), 4));
+  const Ghosts g{L, cur, cm, _mm256_loadu_si256(reinterpret_cast<const __m256i*>(a8)),
+                 _mm256_loadu_si256(reinterpret_cast<const __m256i*>(b8))};
+  g.rows(false, V, 3, rx, ry, rz), store(B.vax, B.vay, B.vaz, rx, ry, rz);
+  g.rows(true, V, 3, rx, ry, rz), store(B.vbx, B.vby, B.vbz, rx, ry, rz);
+  g.rows(false, W, 6, rx, ry, rz), store(B.wax, B.way, B.waz, rx, ry, rz);
+  g.rows(true, W, 6, rx, ry, rz), store(B.wbx, B.wby, B.wbz, rx, ry, rz);
+  // The cross lanes' springs: slot cross[k] of cross_hist[cur], three doubles each; the others' in `history`.
   const double* CH = L.cross_hist[cur].data();
-  for (int c = 0; c < 3; ++c) {
-    _mm512_storeu_pd(va[c] + l0, g.a_or(a3, V + c, 3 + c));
-    _mm512_storeu_pd(vb[c] + l0, g.b_or(b3, V + c, 3 + c));
-    _mm512_storeu_pd(wa[c] + l0, g.a_or(a3, W + c, 6 + c));
-    _mm512_storeu_pd(wb[c] + l0, g.b_or(b3, W + c, 6 + c));
-    const __m512d here = _mm512_mask_i32gather_pd(_mm512_setzero_pd(), static_cast<__mmask8>(~g.cm), k3, H + c, 8);
-    _mm512_storeu_pd(hs[c] + l0, _mm512_mask_i32gather_pd(here, g.cm, c3, CH + c, 8));
-  }
+  const auto spring = [&](int l) {
+    const std::size_t k = k8[l];
+    return ((cm >> l) & 1u) ? CH + 3 * static_cast<std::size_t>(L.cross[k]) : H + 3 * k;
+  };
+  rows8(spring, rx, ry, rz), store(B.hx, B.hy, B.hz, rx, ry, rz);
   return true;
 #else
   (void)B, (void)l0, (void)e8, (void)a8, (void)b8, (void)sep, (void)sep2, (void)rsums, (void)q, (void)p, (void)L,

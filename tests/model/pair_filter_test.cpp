@@ -226,3 +226,27 @@ TEST_CASE("pair filter: stage8 puts each pair's state in its lane, a cross pair'
     }
   }
 }
+
+#if defined(__AVX512F__) && defined(__AVX512VL__)
+TEST_CASE("pair filter: rows8 and load8_pd load what the rows hold, the array's last row included") {
+  // An array of exactly n rows (a vector sized to them, nothing after): the masked loads must not need a
+  // fourth double past the last row, and each lane must get its own row's x, y, z.
+  const std::size_t n = 37;
+  std::vector<double> rows(3 * n), one(n);
+  for (std::size_t r = 0; r < 3 * n; ++r) rows[r] = 0.5 + static_cast<double>(r) * 1.25;
+  for (std::size_t r = 0; r < n; ++r) one[r] = -1.0 - static_cast<double>(r);
+  const std::uint32_t id[8] = {36, 0, 17, 36, 5, 35, 1, 20};
+  __m512d x, y, z;
+  load_rows8(rows.data(), id, x, y, z);
+  alignas(64) double gx[8], gy[8], gz[8], g1[8];
+  _mm512_store_pd(gx, x), _mm512_store_pd(gy, y), _mm512_store_pd(gz, z);
+  _mm512_store_pd(g1, load8_pd(one.data(), id));
+  for (int l = 0; l < 8; ++l) {
+    CAPTURE(l);
+    CHECK(gx[l] == rows[3 * id[l]]);
+    CHECK(gy[l] == rows[3 * id[l] + 1]);
+    CHECK(gz[l] == rows[3 * id[l] + 2]);
+    CHECK(g1[l] == one[id[l]]);
+  }
+}
+#endif
