@@ -8,8 +8,9 @@
 // of the pair pass's samples in chapter-7 test 1 (perf, 2 threads; three candidates in four do not touch)
 // and the loads of both spheres' radii, velocities and spins a third of the settled bed's. Interleaved A/B
 // against the one-at-a-time build (issue 19, bench/README.md): bench bed, 1 thread, contact stage 1.53 ->
-// 1.16 s; the gathers replaced by rows8 and load8_pd: see rows8. Both forms give the same bits: the same subtractions, squares and sums per pair, the same entries in
-// the same order (tests/model/pair_filter_test.cpp, scripts/bitwise_check.sh).
+// 1.16 s; the gathers then replaced by loads (rows8, load8_pd). Both forms give the same bits: the same
+// subtractions, squares and sums per pair, the same entries in the same order (tests/model/pair_filter_test.cpp,
+// scripts/bitwise_check.sh).
 #pragma once
 
 #include <algorithm>
@@ -37,9 +38,11 @@ inline __m256i gather_u32(__m256i at, const std::uint32_t* base) {
 // end) and a transpose. On this project's Zen 5 VM one 8-lane gather costs ~2.4 ns (~12 cycles); the loads and
 // shuffles take less than half of it (a probe of the filter's x loads on a 65k-sphere list: 1.87 -> 0.83 ns
 // per pair). Data movement only: the values three gathers would give.
+// Always inlined, with its lambdas: called out of line (as GCC 12 chose once stage8's cross lanes used it too)
+// its outputs went through memory, and the settled bed's contact stage was ~12 % slower.
 template <class At>
-inline void rows8(const At& at, __m512d& x, __m512d& y, __m512d& z) {
-  const auto two = [&](int l) {
+[[gnu::always_inline]] inline void rows8(const At& at, __m512d& x, __m512d& y, __m512d& z) {
+  const auto two = [&](int l) __attribute__((always_inline)) {
     return _mm512_maskz_insertf64x4(0xff, _mm512_maskz_loadu_pd(0x7, at(l)), _mm256_maskz_loadu_pd(0x7, at(l + 4)), 1);
   };
   // t_l = [row l | row l+4] (x y z 0 x y z 0); unpacks pair rows l and l+1 per 128-bit lane. (The maskz forms:
@@ -53,12 +56,16 @@ inline void rows8(const At& at, __m512d& x, __m512d& y, __m512d& z) {
   z = _mm512_permutex2var_pd(xz01, hi, xz23);
 }
 // Rows base + 3 id[l] (a Vec3 array, or a width-3 spring array).
-inline void load_rows8(const double* base, const std::uint32_t* id, __m512d& x, __m512d& y, __m512d& z) {
-  rows8([&](int l) { return base + 3 * static_cast<std::size_t>(id[l]); }, x, y, z);
+[[gnu::always_inline]] inline void load_rows8(const double* base, const std::uint32_t* id, __m512d& x, __m512d& y,
+                                              __m512d& z) {
+  const auto at = [&](int l) __attribute__((always_inline)) { return base + 3 * static_cast<std::size_t>(id[l]); };
+  rows8(at, x, y, z);
 }
 // Eight doubles base[id[l]] by scalar loads and inserts (a third less than one gather on the same probe).
-inline __m512d load8_pd(const double* base, const std::uint32_t* id) {
-  const auto two = [&](int l) { return _mm_loadh_pd(_mm_load_sd(base + id[l]), base + id[l + 1]); };
+[[gnu::always_inline]] inline __m512d load8_pd(const double* base, const std::uint32_t* id) {
+  const auto two = [&](int l) __attribute__((always_inline)) {
+    return _mm_loadh_pd(_mm_load_sd(base + id[l]), base + id[l + 1]);
+  };
   const __m256d lo = _mm256_insertf128_pd(_mm256_castpd128_pd256(two(0)), two(2), 1);
   const __m256d hi = _mm256_insertf128_pd(_mm256_castpd128_pd256(two(4)), two(6), 1);
   return _mm512_maskz_insertf64x4(0xff, _mm512_castpd256_pd512(lo), hi, 1);
@@ -84,11 +91,14 @@ struct Ghosts {
   }
   // Component rows at `off` of the Ghost (0 x, 3 v, 6 w) of i (of_j false) or j in the cross lanes, the Vec3
   // array `base` elsewhere.
-  void rows(bool of_j, const double* base, int off, __m512d& x, __m512d& y, __m512d& z) const {
+  [[gnu::always_inline]] void rows(bool of_j, const double* base, int off, __m512d& x, __m512d& y,
+                                   __m512d& z) const {
     const std::uint32_t* id = of_j ? b : a;
     const std::uint32_t* g = of_j ? gb : ga;
-    rows8([&](int l) { return ((cm >> l) & 1u) ? G + g[l] + off : base + 3 * static_cast<std::size_t>(id[l]); }, x,
-          y, z);
+    const auto at = [&](int l) __attribute__((always_inline)) {
+      return ((cm >> l) & 1u) ? G + g[l] + off : base + 3 * static_cast<std::size_t>(id[l]);
+    };
+    rows8(at, x, y, z);
   }
 };
 #endif
@@ -305,10 +315,6 @@ bool stage8(Batch& B, int l0, const std::uint32_t* e8, const std::uint32_t* a8, 
 #if defined(__AVX512F__) && defined(__AVX512VL__)
   const __m256i e = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(e8));
   const unsigned cm = static_cast<unsigned>(_mm256_movemask_ps(_mm256_castsi256_ps(e)));  // kCrossBit: sign bit
-  // The pair indices (without a cross pair the entries themselves).
-  alignas(32) std::uint32_t k8[8];
-  _mm256_store_si256(reinterpret_cast<__m256i*>(k8),
-                     _mm256_and_si256(e, _mm256_set1_epi32(static_cast<int>(~PairList::kCrossBit))));
   _mm512_storeu_pd(B.dx + l0, _mm512_loadu_pd(sep.x + q));
   _mm512_storeu_pd(B.dy + l0, _mm512_loadu_pd(sep.y + q));
   _mm512_storeu_pd(B.dz + l0, _mm512_loadu_pd(sep.z + q));
@@ -316,8 +322,6 @@ bool stage8(Batch& B, int l0, const std::uint32_t* e8, const std::uint32_t* a8, 
   _mm512_storeu_pd(B.rsum + l0, _mm512_loadu_pd(rsums + q));
   _mm512_storeu_pd(B.ra + l0, load8_pd(p.radius.data(), a8));
   _mm512_storeu_pd(B.rb + l0, load8_pd(p.radius.data(), b8));
-  _mm512_storeu_pd(B.r_star + l0, load8_pd(L.r_star.data(), k8));
-  _mm512_storeu_pd(B.m_star + l0, load8_pd(L.m_star.data(), k8));
   const double* V = &p.v[0].x;
   const double* W = &p.omega[0].x;
   const double* H = L.history.data();
@@ -326,13 +330,21 @@ bool stage8(Batch& B, int l0, const std::uint32_t* e8, const std::uint32_t* a8, 
   };
   __m512d rx, ry, rz;
   if (cm == 0) {
+    // No cross pair: the entries are the pair indices.
+    _mm512_storeu_pd(B.r_star + l0, load8_pd(L.r_star.data(), e8));
+    _mm512_storeu_pd(B.m_star + l0, load8_pd(L.m_star.data(), e8));
     load_rows8(V, a8, rx, ry, rz), store(B.vax, B.vay, B.vaz, rx, ry, rz);
     load_rows8(V, b8, rx, ry, rz), store(B.vbx, B.vby, B.vbz, rx, ry, rz);
     load_rows8(W, a8, rx, ry, rz), store(B.wax, B.way, B.waz, rx, ry, rz);
     load_rows8(W, b8, rx, ry, rz), store(B.wbx, B.wby, B.wbz, rx, ry, rz);
-    load_rows8(H, k8, rx, ry, rz), store(B.hx, B.hy, B.hz, rx, ry, rz);
+    load_rows8(H, e8, rx, ry, rz), store(B.hx, B.hy, B.hz, rx, ry, rz);
     return true;
   }
+  alignas(32) std::uint32_t k8[8];  // the pair indices
+  _mm256_store_si256(reinterpret_cast<__m256i*>(k8),
+                     _mm256_and_si256(e, _mm256_set1_epi32(static_cast<int>(~PairList::kCrossBit))));
+  _mm512_storeu_pd(B.r_star + l0, load8_pd(L.r_star.data(), k8));
+  _mm512_storeu_pd(B.m_star + l0, load8_pd(L.m_star.data(), k8));
   const Ghosts g{L, cur, cm, _mm256_loadu_si256(reinterpret_cast<const __m256i*>(a8)),
                  _mm256_loadu_si256(reinterpret_cast<const __m256i*>(b8))};
   g.rows(false, V, 3, rx, ry, rz), store(B.vax, B.vay, B.vaz, rx, ry, rz);
@@ -341,7 +353,7 @@ bool stage8(Batch& B, int l0, const std::uint32_t* e8, const std::uint32_t* a8, 
   g.rows(true, W, 6, rx, ry, rz), store(B.wbx, B.wby, B.wbz, rx, ry, rz);
   // The cross lanes' springs: slot cross[k] of cross_hist[cur], three doubles each; the others' in `history`.
   const double* CH = L.cross_hist[cur].data();
-  const auto spring = [&](int l) {
+  const auto spring = [&](int l) __attribute__((always_inline)) {
     const std::size_t k = k8[l];
     return ((cm >> l) & 1u) ? CH + 3 * static_cast<std::size_t>(L.cross[k]) : H + 3 * k;
   };
