@@ -77,12 +77,10 @@ struct Ghosts {
   static_assert(sizeof(PairList::Ghost) == 9 * sizeof(double));
   const double* G;
   unsigned cm;
-  alignas(32) std::uint32_t a[8], b[8];
+  const std::uint32_t *a, *b;  // the lanes' i and j
   std::uint32_t ga[8], gb[8];  // 9 x ghost slot of the lanes' i and j (cross lanes only)
-  Ghosts(const PairList& L, int cur, unsigned cross_lanes, __m256i a8, __m256i b8)
-      : G(reinterpret_cast<const double*>(L.ghost[cur].data())), cm(cross_lanes) {
-    _mm256_store_si256(reinterpret_cast<__m256i*>(a), a8);
-    _mm256_store_si256(reinterpret_cast<__m256i*>(b), b8);
+  Ghosts(const PairList& L, int cur, unsigned cross_lanes, const std::uint32_t* a8, const std::uint32_t* b8)
+      : G(reinterpret_cast<const double*>(L.ghost[cur].data())), cm(cross_lanes), a(a8), b(b8) {
     for (int l = 0; l < 8; ++l) {
       const bool cross = (cm >> l) & 1u;
       ga[l] = cross ? 9 * L.ghost_of[a[l]] : 0;
@@ -174,10 +172,7 @@ struct PairFilter {
 #if defined(__AVX512F__) && defined(__AVX512VL__)
   // The touching flags and springs of a group's cross pairs (lanes cm; pair k, first particle a), as one()
   // sets them: by the owner of i only.
-  void cross_flags(unsigned cm, unsigned touch, __m256i k, __m256i a) const {
-    alignas(32) std::uint32_t k8[8], a8[8];
-    _mm256_store_si256(reinterpret_cast<__m256i*>(k8), k);
-    _mm256_store_si256(reinterpret_cast<__m256i*>(a8), a);
+  void cross_flags(unsigned cm, unsigned touch, const std::uint32_t* k8, const std::uint32_t* a8) const {
     const std::size_t ws = static_cast<std::size_t>(L.width);
     for (unsigned m = cm & 0xffu; m != 0; m &= m - 1) {
       const int l = __builtin_ctz(m);
@@ -208,6 +203,9 @@ struct PairFilter {
       __m512d rsum;
       unsigned cm = 0;  // the cross pairs' lanes
       std::uint32_t k0 = static_cast<std::uint32_t>(q);
+      // The lanes' pairs and particles: in the list where the eight are consecutive, else copied here.
+      alignas(32) std::uint32_t k8[8], a8[8], b8[8];
+      const std::uint32_t *ia = L.i.data() + k0, *ib = L.j.data() + k0;
       bool consecutive = true;  // pairs k0 .. k0 + 7, none crossing (a single thread's list: always)
       if constexpr (Part) {
         e = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(ks + q));
@@ -218,13 +216,18 @@ struct PairFilter {
         if (consecutive) {
           // Eight consecutive pairs (a thread's list ascends, and most of it is runs): loads, not gathers
           // (bench bed, 2 threads, 4 interleaved pairs: contact stage 0.658 -> 0.625 s, min of each).
-          a = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(L.i.data() + k0));
-          b = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(L.j.data() + k0));
+          ia = L.i.data() + k0, ib = L.j.data() + k0;
+          a = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(ia));
+          b = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(ib));
           rsum = _mm512_loadu_pd(L.rsum.data() + k0);
         } else {
-          a = gather_u32(k, L.i.data());
-          b = gather_u32(k, L.j.data());
-          rsum = gather_pd(k, L.rsum.data());
+          // Scalar loads, not gathers (the rows8 probe: an 8-lane gather costs ~12 cycles here).
+          _mm256_store_si256(reinterpret_cast<__m256i*>(k8), k);
+          for (int l = 0; l < 8; ++l) a8[l] = L.i[k8[l]], b8[l] = L.j[k8[l]];
+          ia = a8, ib = b8;
+          a = _mm256_load_si256(reinterpret_cast<const __m256i*>(a8));
+          b = _mm256_load_si256(reinterpret_cast<const __m256i*>(b8));
+          rsum = load8_pd(L.rsum.data(), k8);
         }
       } else {
         e = k = _mm256_add_epi32(_mm256_set1_epi32(static_cast<int>(q)), lane);
@@ -234,14 +237,7 @@ struct PairFilter {
       }
       __m512d dx, dy, dz;
       if (cm == 0) {
-        // Both positions by loads (load_rows8), the indices from the list where the pairs are consecutive.
-        alignas(32) std::uint32_t a8[8], b8[8];
-        const std::uint32_t *ia = L.i.data() + k0, *ib = L.j.data() + k0;
-        if (!consecutive) {
-          _mm256_store_si256(reinterpret_cast<__m256i*>(a8), a);
-          _mm256_store_si256(reinterpret_cast<__m256i*>(b8), b);
-          ia = a8, ib = b8;
-        }
+        // Both positions by loads and a transpose (load_rows8).
         __m512d xa, ya, za, xb, yb, zb;
         load_rows8(X, ia, xa, ya, za);
         load_rows8(X, ib, xb, yb, zb);
@@ -249,7 +245,7 @@ struct PairFilter {
       } else {
         // A cross pair's two positions from their ghost copies (Ghost: x, v, w, nine doubles), as one() reads
         // them; the other lanes' from the store.
-        const Ghosts g{L, cur, cm, a, b};
+        const Ghosts g{L, cur, cm, ia, ib};
         __m512d xa, ya, za, xb, yb, zb;
         g.rows(false, X, 0, xa, ya, za);
         g.rows(true, X, 0, xb, yb, zb);
@@ -275,19 +271,22 @@ struct PairFilter {
       o.m = m + __builtin_popcount(touch);
       // The touching flags (0/1) of the eight pairs; their previous values give the contacts just opened.
       const __m256i now = _mm256_maskz_mov_epi32(touch, _mm256_set1_epi32(1));
-      __m256i was;
+      unsigned was = 0;  // the lanes that were touching
       std::uint32_t* T = L.touching.data();
       if (consecutive) {
-        was = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(T + k0));
+        const __m256i w = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(T + k0));
+        was = _mm256_test_epi32_mask(w, w);
         _mm256_storeu_si256(reinterpret_cast<__m256i*>(T + k0), now);
       } else {
-        // The other lanes' flags here; a cross pair's below, by the owner of its i only.
-        const __mmask8 here = static_cast<__mmask8>(~cm);
-        was = _mm256_mmask_i32gather_epi32(_mm256_setzero_si256(), here, k, T, 4);
-        _mm256_mask_i32scatter_epi32(reinterpret_cast<int*>(T), here, k, now, 4);
+        // The other lanes' flags here, one at a time; a cross pair's below, by the owner of its i only.
+        for (unsigned here = ~cm & 0xffu; here != 0; here &= here - 1) {
+          const int l = __builtin_ctz(here);
+          was |= static_cast<unsigned>(T[k8[l]] != 0) << l;
+          T[k8[l]] = (touch >> l) & 1u;
+        }
       }
-      if (cm != 0) cross_flags(cm, touch, k, a);
-      const unsigned opened = _mm256_test_epi32_mask(was, was) & ~static_cast<unsigned>(touch) & ~cm & 0xffu;
+      if (cm != 0) cross_flags(cm, touch, k8, ia);
+      const unsigned opened = was & ~static_cast<unsigned>(touch) & ~cm & 0xffu;
       if (opened != 0) {
         alignas(32) std::uint32_t ks8[8];
         _mm256_store_si256(reinterpret_cast<__m256i*>(ks8), k);
@@ -345,8 +344,7 @@ bool stage8(Batch& B, int l0, const std::uint32_t* e8, const std::uint32_t* a8, 
                      _mm256_and_si256(e, _mm256_set1_epi32(static_cast<int>(~PairList::kCrossBit))));
   _mm512_storeu_pd(B.r_star + l0, load8_pd(L.r_star.data(), k8));
   _mm512_storeu_pd(B.m_star + l0, load8_pd(L.m_star.data(), k8));
-  const Ghosts g{L, cur, cm, _mm256_loadu_si256(reinterpret_cast<const __m256i*>(a8)),
-                 _mm256_loadu_si256(reinterpret_cast<const __m256i*>(b8))};
+  const Ghosts g{L, cur, cm, a8, b8};
   g.rows(false, V, 3, rx, ry, rz), store(B.vax, B.vay, B.vaz, rx, ry, rz);
   g.rows(true, V, 3, rx, ry, rz), store(B.vbx, B.vby, B.vbz, rx, ry, rz);
   g.rows(false, W, 6, rx, ry, rz), store(B.wax, B.way, B.waz, rx, ry, rz);
