@@ -35,9 +35,9 @@ inline __m256i gather_u32(__m256i at, const std::uint32_t* base) {
 }
 // Eight rows of three doubles (row l at at(l): a Vec3 array's element, a ghost copy's x, v or w, a pair's
 // spring) as one register per component: eight masked 256-bit loads (three lanes each, so never past a row's
-// end) and a transpose. On this project's Zen 5 VM one 8-lane gather costs ~2.4 ns (~12 cycles); the loads and
-// shuffles take less than half of it (a probe of the filter's x loads on a 65k-sphere list: 1.87 -> 0.83 ns
-// per pair). Data movement only: the values three gathers would give.
+// end) and a transpose. On this project's Zen 5 VM the loads and shuffles take about half the time of the
+// gathers (bench/gather_probe, both spheres' positions and radii of a 65k-sphere list: 4.21 -> 1.82 ns per
+// pair). Data movement only: the values three gathers would give.
 // Always inlined, with its lambdas: called out of line (as GCC 12 chose once stage8's cross lanes used it too)
 // its outputs went through memory, and the settled bed's contact stage was ~12 % slower.
 template <class At>
