@@ -3,14 +3,13 @@
 // touch: it keeps each touching pair's list entry, separation x_j - x_i (m), squared distance (m^2) and
 // R_i + R_j (m) in pair order, sets the pairs' touching flags and zeroes the springs of the contacts that
 // just opened. stage8 loads eight touching pairs' state into a batch kernel's lanes. With AVX-512 both take
-// eight pairs at a time (the spheres' state by loads and a transpose, rows8; one compare, compressed
-// stores); one at a time, the filter was about half
-// of the pair pass's samples in chapter-7 test 1 (perf, 2 threads; three candidates in four do not touch)
-// and the loads of both spheres' radii, velocities and spins a third of the settled bed's. Interleaved A/B
-// against the one-at-a-time build (issue 19, bench/README.md): bench bed, 1 thread, contact stage 1.53 ->
-// 1.16 s; the gathers then replaced by loads (rows8, load8_pd). Both forms give the same bits: the same
-// subtractions, squares and sums per pair, the same entries in the same order (tests/model/pair_filter_test.cpp,
-// scripts/bitwise_check.sh).
+// eight pairs at a time (the spheres' state by loads and a transpose, rows8; one compare, compressed stores);
+// one at a time, the filter was about half of the pair pass's samples in chapter-7 test 1 (perf, 2 threads;
+// three candidates in four do not touch) and the loads of both spheres' radii, velocities and spins a third of
+// the settled bed's. Interleaved A/B against the one-at-a-time build (issue 19, bench/README.md): bench bed, 1
+// thread, contact stage 1.53 -> 1.16 s; with gathers replaced by loads (rows8, load8_pd, session 32) 0.78 s.
+// Both forms give the same bits: the same subtractions, squares and sums per pair, the same entries in the same
+// order (tests/model/pair_filter_test.cpp, scripts/bitwise_check.sh).
 #pragma once
 
 #include <algorithm>
@@ -25,14 +24,6 @@
 namespace pastemix::model {
 
 #if defined(__AVX512F__) && defined(__AVX512VL__)
-// Gathers of all eight lanes (a group with a cross pair: its indices and R_i + R_j by pair). The masked
-// forms: the plain ones start from an undefined register, which GCC 12 warns of.
-inline __m512d gather_pd(__m256i at, const double* base) {
-  return _mm512_mask_i32gather_pd(_mm512_setzero_pd(), 0xff, at, base, 8);
-}
-inline __m256i gather_u32(__m256i at, const std::uint32_t* base) {
-  return _mm256_mmask_i32gather_epi32(_mm256_setzero_si256(), 0xff, at, base, 4);
-}
 // Eight rows of three doubles (row l at at(l): a Vec3 array's element, a ghost copy's x, v or w, a pair's
 // spring) as one register per component: eight masked 256-bit loads (three lanes each, so never past a row's
 // end) and a transpose. On this project's Zen 5 VM the loads and shuffles take about half the time of the
@@ -221,7 +212,7 @@ struct PairFilter {
           b = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(ib));
           rsum = _mm512_loadu_pd(L.rsum.data() + k0);
         } else {
-          // Scalar loads, not gathers (the rows8 probe: an 8-lane gather costs ~12 cycles here).
+          // Scalar loads, not gathers (bench/gather_probe: a gather costs about twice the loads here).
           _mm256_store_si256(reinterpret_cast<__m256i*>(k8), k);
           for (int l = 0; l < 8; ++l) a8[l] = L.i[k8[l]], b8[l] = L.j[k8[l]];
           ia = a8, ib = b8;
