@@ -233,6 +233,7 @@ void pair_pass(const std::vector<typename Law::Params>& table, const std::vector
 void PairList::rebuild(CandidatePairs& c, const Particles& p, int n_materials, int loop_threads) {
   YieldBarrier barrier;
   run_team(loop_threads, barrier, [&](const Team& t) { rebuild(c, p, n_materials, t); });
+  index_by_first(p.size());
 }
 
 void PairList::rebuild(CandidatePairs& c, const Particles& p, int n_materials, const Team& t) {
@@ -324,7 +325,6 @@ void PairList::rebuild(CandidatePairs& c, const Particles& p, int n_materials, c
   history.swap(new_hist);
   touching.swap(new_touch);
   threads = 0;  // partition() again
-  index_by_first(p.size());
 }
 
 void PairList::find_uniform_law() {

@@ -92,7 +92,8 @@ struct PairList {
   // loop_threads: of its loop (model/parallel.h); the result does not depend on it.
   void rebuild(CandidatePairs& c, const Particles& p, int n_materials, int loop_threads);
   // The same, run by every thread of a team inside its parallel region (model/parallel.h); the list is
-  // complete after the team's next sync.
+  // complete after the team's next sync, but for its CSR by first particle (start, entry): one thread calls
+  // index_by_first() after that sync (World::rebuild_lists: the thread that is not partitioning).
   void rebuild(CandidatePairs& c, const Particles& p, int n_materials, const Team& team);
   // Splits the particles (positions x) into `threads` slabs across the longest side of their bounding box,
   // thread t's slab of about share[t] of the total cost (particles, pairs, touching pairs, and `extra` per
@@ -112,9 +113,8 @@ struct PairList {
   // others, history and touching flags kept (a pair whose ends swap keeps (lower, higher) with its springs
   // negated). The threads are done, sync_cross() has run. Only rebuild() may follow: the partition is reset.
   void rename(const std::vector<std::uint32_t>& map, std::size_t np);
-
- private:
-  void index_by_first(std::size_t np);  // the CSR start / entry by first particle
+  // The CSR start / entry by first particle (for np particles), of the pairs as they are now.
+  void index_by_first(std::size_t np);
 };
 
 // Per particle: a Verlet list of the walls within radius + skin (most particles have none, so the wall
