@@ -196,7 +196,7 @@ struct PairFilter {
       std::uint32_t k0 = static_cast<std::uint32_t>(q);
       // The lanes' pairs and particles: in the list where the eight are consecutive, else copied here.
       alignas(32) std::uint32_t k8[8], a8[8], b8[8];
-      const std::uint32_t *ia = L.i.data() + k0, *ib = L.j.data() + k0;
+      const std::uint32_t *ia = nullptr, *ib = nullptr;
       bool consecutive = true;  // pairs k0 .. k0 + 7, none crossing (a single thread's list: always)
       if constexpr (Part) {
         e = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(ks + q));
@@ -222,8 +222,9 @@ struct PairFilter {
         }
       } else {
         e = k = _mm256_add_epi32(_mm256_set1_epi32(static_cast<int>(q)), lane);
-        a = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(L.i.data() + q));
-        b = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(L.j.data() + q));
+        ia = L.i.data() + q, ib = L.j.data() + q;
+        a = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(ia));
+        b = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(ib));
         rsum = _mm512_loadu_pd(L.rsum.data() + q);
       }
       __m512d dx, dy, dz;

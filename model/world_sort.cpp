@@ -102,7 +102,7 @@ void World::rebuild_lists(int threads) {
     // Thread 0 finishes the pair list; the other thread then indexes it by first particle (for the next
     // rebuild's carry-over) beside thread 0's partition, which is the longer (13k pour, 2 threads, session 31's
     // timers: thread 0's pair-list phase, which ended with the index, 0.029 s against thread 1's 0.022 s).
-    if (team.size > 1) team.sync();
+    team.sync();  // (no wait for a team of one)
     if (team.me == (team.size > 1 ? 1 : 0)) {
       pairs_.index_by_first(n);
       wall_contacts_.lay_out();
