@@ -165,20 +165,28 @@ void FluidField::update_part(const Particles& p, int thread, const std::vector<s
   std::vector<long>& members = lane.members[static_cast<std::size_t>(lane.par)];
   std::vector<Wet>& wet = lane.wet[static_cast<std::size_t>(lane.par)];
   std::vector<double>& wet_sum = lane.wet_sum[static_cast<std::size_t>(lane.par)];
-  members.clear(), wet.clear();
   wet_sum.assign(regions_.size(), 0.0);
-  auto visit = [&](std::size_t a) {
+  // Sized for every visited particle and cut to the members found: no capacity test per member.
+  const std::size_t visits = listed ? lane.candidates.size() : own ? own->size() : p.size();
+  members.resize(visits), wet.resize(visits);
+  std::size_t found = 0;
+  auto visit = [&](std::size_t a) __attribute__((always_inline)) {
     const Vec3& x = p.x[a];
     for (std::size_t k = 0; k < regions_.size(); ++k) {
       const FluidRegion& reg = regions_[k];
       if (!reg.contains_xy(x.x, x.y)) continue;
       const double vs = wetted_volume(reg, x.z, p.radius[a], lane.surface[k], reg.partial_submergence);
       if (vs <= 0.0) continue;
-      region_of_[a] = static_cast<int>(k);
+      const int region = static_cast<int>(k);
+      // A sphere that stays in its region with the same wetted volume (every sphere under the surface)
+      // would get keep_sphere's phi to the bit and no new constants (set_step resets rest_region_ when
+      // they must be made anew): keep_sphere, with its division, is skipped.
+      const bool same = region_of_[a] == region && v_sub_[a] == vs && rest_region_[a] == region;
+      region_of_[a] = region;
       v_sub_[a] = vs;
-      keep_sphere(p, a, static_cast<int>(k));
-      members.push_back(static_cast<long>(a));
-      wet.push_back({vs, static_cast<int>(k)});
+      if (!same) keep_sphere(p, a, region);
+      members[found] = static_cast<long>(a);
+      wet[found++] = {vs, region};
       wet_sum[k] += vs;
       return;  // the first region that holds the particle owns it
     }
@@ -190,6 +198,7 @@ void FluidField::update_part(const Particles& p, int thread, const std::vector<s
     for (std::uint32_t a : *own) visit(a);
   else
     for (std::size_t a = 0; a < p.size(); ++a) visit(a);
+  members.resize(found), wet.resize(found);
   lane.pending = true;
   // Collective yield: the clusters every `every` steps (the smallest interval of the collective regions).
   const long every = dt_ > 0.0 ? std::max(1L, std::lround(cluster_interval_ / dt_)) : 1L;

@@ -85,3 +85,33 @@ TEST_CASE("fluid field: 3 lanes over interleaved particles give update()'s bits 
   CHECK(risen > 0.0);
   CHECK(lanes.candidate_count() < p.size());
 }
+
+// update() skips a sphere's constants while it stays in its region with the same wetted volume (field.cpp): a
+// new step or gravity (set_step) must still make them anew, as a field that never saw the old step does.
+TEST_CASE("fluid field: a resting sphere's kick follows a new step, as a fresh field's") {
+  Particles p = falling_rock();
+  FluidRegion rock_paste = paste(), water = paste();
+  rock_paste.surface_rise = water.surface_rise = false;  // the same surface after any number of updates
+  water.law = NewtonianStokes::Params{1000, 1e-3};  // Stokes drag (linear): its kick factors depend on the step
+  water.curve = FluidRegion{}.curve;
+  // Slow enough for the paste's affine branch (its kept factors also depend on the step).
+  const Vec3 g{0, 0, -9.81}, v{1e-4, -2e-4, -3e-4}, f{0, 0, -1e-4};
+  for (bool linear : {true, false}) {
+    FluidField moved({linear ? water : rock_paste}), fresh({linear ? water : rock_paste});
+    moved.set_step(2e-5, g);
+    moved.update(p), moved.update(p);  // the second update keeps every sphere's constants
+    moved.set_step(5e-5, g), fresh.set_step(5e-5, g);
+    moved.update(p), fresh.update(p);  // nothing moved: the same volumes, the new step's constants
+    int inside = 0, differ = 0;
+    for (long a = 0; a < static_cast<long>(p.size()); ++a) {
+      if (!fresh.inside(a)) continue;
+      ++inside;
+      const auto i = static_cast<std::size_t>(a);
+      const Vec3 k1 = moved.kick(a, v, f, p.mass[i], p.radius[i], 2.5e-5, g);
+      const Vec3 k2 = fresh.kick(a, v, f, p.mass[i], p.radius[i], 2.5e-5, g);
+      differ += k1.x != k2.x || k1.y != k2.y || k1.z != k2.z;
+    }
+    CHECK(inside > 100);
+    CHECK(differ == 0);
+  }
+}
