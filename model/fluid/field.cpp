@@ -170,6 +170,8 @@ void FluidField::update_part(const Particles& p, int thread, const std::vector<s
   const std::size_t visits = listed ? lane.candidates.size() : own ? own->size() : p.size();
   members.resize(visits), wet.resize(visits);
   std::size_t found = 0;
+  std::vector<long>& changed = lane.changed;
+  changed.clear();
   auto visit = [&](std::size_t a) __attribute__((always_inline)) {
     const Vec3& x = p.x[a];
     for (std::size_t k = 0; k < regions_.size(); ++k) {
@@ -184,7 +186,7 @@ void FluidField::update_part(const Particles& p, int thread, const std::vector<s
       const bool same = region_of_[a] == region && v_sub_[a] == vs && rest_region_[a] == region;
       region_of_[a] = region;
       v_sub_[a] = vs;
-      if (!same) keep_sphere(p, a, region);
+      if (!same) changed.push_back(static_cast<long>(a));
       members[found] = static_cast<long>(a);
       wet[found++] = {vs, region};
       wet_sum[k] += vs;
@@ -199,6 +201,11 @@ void FluidField::update_part(const Particles& p, int thread, const std::vector<s
   else
     for (std::size_t a = 0; a < p.size(); ++a) visit(a);
   members.resize(found), wet.resize(found);
+  // The constants of the members whose wetted volume or region changed, in a loop of their own (a sphere's
+  // constants depend on it alone: the same bits in any order). At the surface, where the volumes change each
+  // step, this is most members (case 3: ~65 %); apart from the visits, the chains of divisions and exp of
+  // neighbouring spheres overlap.
+  for (long a : changed) keep_sphere(p, static_cast<std::size_t>(a), region_of_[static_cast<std::size_t>(a)]);
   lane.pending = true;
   // Collective yield: the clusters every `every` steps (the smallest interval of the collective regions).
   const long every = dt_ > 0.0 ? std::max(1L, std::lround(cluster_interval_ / dt_)) : 1L;

@@ -315,6 +315,7 @@ class FluidField {
     bool visited = false;  // its candidates were visited since the lane was made (their flags are set)
     long since = 0;                            // steps since the last cluster update (since_clusters_)
     std::vector<double> surface, surface_at_refresh;  // m, the thread's copy (the same bits in every lane)
+    std::vector<long> changed;                 // scratch of update_part: its members whose phi may have changed
     std::vector<double> sum;                   // m3 per region, scratch of rise()
     std::vector<std::size_t> head;             // scratch of the merges
   };
