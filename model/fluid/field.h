@@ -329,6 +329,7 @@ class FluidField {
   template <class List, class F>
   void merged(List&& list, std::vector<std::size_t>& head, F&& f) const;
   void gather_members();  // members_ from the lanes' last members
+  bool lanes_ordered(std::size_t par) const;  // every lane's members [par] below the next lane's
   // Per particle, what the kick needs and update() already knows (the kick's own expressions, so the same
   // bits): the submerged fraction phi of this step, and, while the particle stays in region rest_region_,
   // its yield number and rest drag D(0+) (both constant for a sphere in one fluid; gravity g_).
