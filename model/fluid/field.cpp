@@ -53,19 +53,24 @@ void FluidField::refresh(const Particles& p, Lane& lane, const std::vector<std::
   lane.stale = false, lane.refreshed = true;
 }
 
+template <class List>
+bool FluidField::in_order(List&& list) const {
+  long last = -1;
+  for (const Lane& lane : lanes_) {
+    const auto& l = list(lane);
+    if (l.empty()) continue;
+    if (l.front() <= last) return false;
+    last = l.back();
+  }
+  return true;
+}
+
 template <class List, class F>
 void FluidField::merged(List&& list, std::vector<std::size_t>& head, F&& f) const {
   const std::size_t lanes = lanes_.size();
   // Lanes whose lists follow each other (every particle of one below every particle of the next: the
   // World's slabs after its spatial sort) are read one after the other, without comparisons.
-  bool ordered = true;
-  long last = -1;
-  for (std::size_t t = 0; t < lanes && ordered; ++t) {
-    const auto& l = list(lanes_[t]);
-    if (l.empty()) continue;
-    ordered = l.front() > last, last = l.back();
-  }
-  if (ordered) {
+  if (in_order(list)) {
     for (std::size_t t = 0; t < lanes; ++t) {
       const std::size_t n = list(lanes_[t]).size();
       for (std::size_t q = 0; q < n; ++q) f(lanes_[t], q);
@@ -94,7 +99,8 @@ void FluidField::rise(int par, Lane& scratch, std::vector<double>& surface) cons
   const auto p = static_cast<std::size_t>(par);
   if (lanes_.size() == 1) {
     wet = lanes_[0].wet_sum[p];  // one lane: its members' sum is the ascending one (issue 19: ~3 % of a bed in air)
-  } else if (lanes_ordered(p) && lanes_[0].wet_sum[p].size() == regions_.size()) {
+  } else if (in_order([p](const Lane& l) -> const std::vector<long>& { return l.members[p]; }) &&
+             lanes_[0].wet_sum[p].size() == regions_.size()) {
     // Lanes whose members follow each other (the World's slabs after its spatial sort): the ascending sum
     // is lane 0's own sum continued over the other lanes' members in order, the same additions as below
     // (case 3's rock lies in one slab: ~95 % of the members were added again here every step, by each thread).
@@ -108,17 +114,6 @@ void FluidField::rise(int par, Lane& scratch, std::vector<double>& surface) cons
   }
   for (std::size_t k = 0; k < regions_.size(); ++k)
     if (regions_[k].surface_rise) surface[k] = regions_[k].z_surface0 + wet[k] / regions_[k].area();
-}
-
-bool FluidField::lanes_ordered(std::size_t par) const {
-  long last = -1;
-  for (const Lane& l : lanes_) {
-    const std::vector<long>& m = l.members[par];
-    if (m.empty()) continue;
-    if (m.front() <= last) return false;
-    last = m.back();
-  }
-  return true;
 }
 
 void FluidField::gather_members() {

@@ -328,8 +328,10 @@ class FluidField {
   // Calls f(lane, q) for every lane's entry q of list(lane), in ascending particle order.
   template <class List, class F>
   void merged(List&& list, std::vector<std::size_t>& head, F&& f) const;
+  // Whether every lane's list(lane) lies below the next non-empty lane's (the World's slabs after its sort).
+  template <class List>
+  bool in_order(List&& list) const;
   void gather_members();  // members_ from the lanes' last members
-  bool lanes_ordered(std::size_t par) const;  // every lane's members [par] below the next lane's
   // Per particle, what the kick needs and update() already knows (the kick's own expressions, so the same
   // bits): the submerged fraction phi of this step, and, while the particle stays in region rest_region_,
   // its yield number and rest drag D(0+) (both constant for a sphere in one fluid; gravity g_).
