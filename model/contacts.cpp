@@ -401,11 +401,13 @@ void PairList::partition(int n_threads, const std::vector<Vec3>& x, const std::v
   if (n >= kCrossBit) throw std::length_error("pair list too long for the threads' pair lists (2^31 pairs)");
   // Slabs across the longest side of the particles' bounding box, of about equal cost: the fewer pairs
   // cross a cut, the less work is done twice (settled bed, 2 threads: 2 % of the pairs cross a cut across
-  // its 20 cm side, 14 % cross a cut between the halves of the index range).
+  // its 20 cm side, 14 % cross a cut between the halves of the index range of a store in input order).
+  // Index slabs (Slabs::index, a sorted store) need no box.
+  const bool by_index = slabs == Slabs::index;
   Vec3 lo = x[0], hi = x[0];
   if (box) {
     lo = {(*box)[0], (*box)[1], (*box)[2]}, hi = {(*box)[3], (*box)[4], (*box)[5]};
-  } else {
+  } else if (!by_index) {
     for (const Vec3& q : x) {
       lo = {std::min(lo.x, q.x), std::min(lo.y, q.y), std::min(lo.z, q.z)};
       hi = {std::max(hi.x, q.x), std::max(hi.y, q.y), std::max(hi.z, q.z)};
@@ -416,7 +418,8 @@ void PairList::partition(int n_threads, const std::vector<Vec3>& x, const std::v
   auto coord = [&](const Vec3& q) { return axis == 0 ? q.x - lo.x : axis == 1 ? q.y - lo.y : q.z - lo.z; };
   const double len = axis == 0 ? ext.x : axis == 1 ? ext.y : ext.z;
   // Cost of a particle, in rough units of one candidate test: its kick and walls (4), its candidate pairs
-  // (1 each) and its touching pairs (5 more each: the force law). Cumulated over 4096 bins along the axis.
+  // (1 each) and its touching pairs (5 more each: the force law). Cumulated over 4096 bins along the axis
+  // (or the index).
   std::vector<double> cost(np, 4.0);
   if (extra && extra->size() == np)
     for (std::size_t a = 0; a < np; ++a) cost[a] += (*extra)[a];
@@ -431,7 +434,7 @@ void PairList::partition(int n_threads, const std::vector<Vec3>& x, const std::v
   const double scale = len > 0.0 ? kBins / len : 0.0;
   double total = 0.0;
   for (std::size_t a = 0; a < np; ++a) {
-    bin_of[a] = std::clamp(static_cast<int>(coord(x[a]) * scale), 0, kBins - 1);
+    bin_of[a] = by_index ? static_cast<int>(a * kBins / np) : std::clamp(static_cast<int>(coord(x[a]) * scale), 0, kBins - 1);
     bin[static_cast<std::size_t>(bin_of[a])] += cost[a];
     total += cost[a];
   }

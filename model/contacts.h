@@ -95,15 +95,25 @@ struct PairList {
   // complete after the team's next sync, but for its CSR by first particle (start, entry): one thread calls
   // index_by_first() after that sync (World::rebuild_lists: the thread that is not partitioning).
   void rebuild(CandidatePairs& c, const Particles& p, int n_materials, const Team& team);
-  // Splits the particles (positions x) into `threads` slabs across the longest side of their bounding box,
-  // thread t's slab of about share[t] of the total cost (particles, pairs, touching pairs, and `extra` per
-  // particle where given: the force passes' own work, e.g. a fluid kick); equal shares without `share`.
+  // Splits the particles (positions x) into `threads` slabs, thread t's slab of about share[t] of the total
+  // cost (particles, pairs, touching pairs, and `extra` per particle where given: the force passes' own
+  // work, e.g. a fluid kick); equal shares without `share`. The slabs (see `slabs`) are ranges of the dense
+  // index, or slices across the longest side of the particles' bounding box.
   // work[t]: the cost of thread t's slab (the units of the load balance, World::partition).
   // box: the positions' bounding box (min xyz, max xyz) where the caller has it (the neighbour search's,
   // of the same positions), else computed here.
   void partition(int threads, const std::vector<Vec3>& x, const std::vector<double>* extra = nullptr,
                  const std::vector<double>* share = nullptr, const std::array<double, 6>* box = nullptr);
   std::vector<double> work;
+  // What partition() cuts: Slabs::index where the store is in a spatial order (World's sort at rebuilds,
+  // [neighbor] sort_every > 0): index ranges are then spatial slabs too, and each thread's particles, pairs
+  // and their cache lines are its own. Slabs::space cuts across the longest side of the bounding box (a
+  // store in input order, whose index ranges would cross many pairs), so near a cut the owners of
+  // neighbouring indices alternate: case 3 of the main job (cut across its flat pile, ~900 alternations per
+  // partition) spent 2.4x the samples of one thread in the pair filter and 2.5x in the kicks, both threads
+  // writing into the same cache lines (issue 19).
+  enum class Slabs { space, index };
+  Slabs slabs = Slabs::space;
   // Copies the cross pairs' history back into `history` (the threads are done).
   void sync_cross();
   // Sets ghost[parity] from the particles (before the threads start).

@@ -64,6 +64,8 @@ bool World::imbalanced(int threads) const {
 
 void World::partition(int threads, const std::vector<Vec3>& x, const std::array<double, 6>* box) {
   if (threads > 1) update_shares(threads);
+  // A store sorted into cell order at rebuilds: its index ranges are spatial slabs (PairList::Slabs).
+  pairs_.slabs = cfg_.sort_every > 0 ? PairList::Slabs::index : PairList::Slabs::space;
   bool costed = false;
   for_each_pass(forces_, [&](const auto& pass) {
     if constexpr (requires { pass.partition_cost(0L); }) costed |= pass.active();
