@@ -434,7 +434,8 @@ void PairList::partition(int n_threads, const std::vector<Vec3>& x, const std::v
   const double scale = len > 0.0 ? kBins / len : 0.0;
   double total = 0.0;
   for (std::size_t a = 0; a < np; ++a) {
-    bin_of[a] = by_index ? static_cast<int>(a * kBins / np) : std::clamp(static_cast<int>(coord(x[a]) * scale), 0, kBins - 1);
+    bin_of[a] = by_index ? static_cast<int>(a * kBins / np)
+                         : std::clamp(static_cast<int>(coord(x[a]) * scale), 0, kBins - 1);
     bin[static_cast<std::size_t>(bin_of[a])] += cost[a];
     total += cost[a];
   }

@@ -147,6 +147,9 @@ class World {
   // the passes' particles_moved). Serial and a function of the positions only: the same for any threads.
   void sort_particles();
   std::vector<std::uint32_t> cell_order() const;
+  // The sort's axes, fastest .. slowest, from `axis` (by extent): the slowest the one the threads' slabs
+  // cut across best (world_sort.cpp).
+  std::array<int, 3> slab_axes(std::array<int, 3> axis) const;
   // The threads of a loop over n items (WorldConfig::parallel_min_items).
   int threads_for(long n) const;
   // What the kick of a pass does after the forces.
