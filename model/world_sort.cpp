@@ -141,9 +141,9 @@ std::array<int, 3> World::slab_axes(std::array<int, 3> axis) const {
   std::vector<double> c(n);
   for (int k = 0; k < 3; ++k) {
     for (std::size_t a = 0; a < n; ++a) c[a] = k == 0 ? p_.x[a].x : k == 1 ? p_.x[a].y : p_.x[a].z;
-    std::vector<double> m = c;
-    std::nth_element(m.begin(), m.begin() + static_cast<long>(n / 2), m.end());
-    const double mid = m[n / 2];
+    // The count needs no order: the median's partial sort in place.
+    std::nth_element(c.begin(), c.begin() + static_cast<long>(n / 2), c.end());
+    const double mid = c[n / 2];
     for (double q : c) near[k] += std::abs(q - mid) < band;
   }
   int best = axis[2];
@@ -165,7 +165,8 @@ std::array<int, 3> World::slab_axes(std::array<int, 3> axis) const {
 // stable, linear). Why this order: the pair pass then sweeps the box along its slowest side, and its
 // working set is a few layers of cells across the two other sides (a 207k-sphere pour: ~4,000 spheres,
 // ~1 MB, inside the L2 cache), where the insertion order put a sphere's partners of the next lattice layer
-// 17,280 entries away; and the threads' slabs (PairList::partition, Slabs::index) are index ranges, cut across the slowest axis.
+// 17,280 entries away; and the threads' slabs (PairList::partition, Slabs::index) are index ranges, cut
+// across the slowest axis.
 std::vector<std::uint32_t> World::cell_order() const {
   const std::size_t n = p_.size();
   std::vector<std::uint32_t> map(n);
