@@ -109,11 +109,12 @@ void NeighborSearch::build(const std::vector<Vec3>& x, const std::vector<double>
     if (side && t.size > 1) side(Team{t.me, t.size, nullptr});
     return;
   }
-  // Nine phases, eight syncs of the team (no libgomp region or barrier: on this 2-core VM a sleeping
-  // thread takes tens of us to wake, and a pour rebuilds every ~8 steps): thread 0 sizes the buffers; each
-  // thread's bounding box of its share; their union, the size levels and the grids in thread 0; the
-  // counting sort's three phases (count_cells); the search of the finder chunks (a WorkQueue); the chunks'
-  // offsets in thread 0; then each thread copies its chunks into `out` (the caller syncs before reading it).
+  // Ten phases, nine syncs of the team (no libgomp region or barrier: on this 2-core VM a sleeping thread
+  // takes tens of us to wake, and a pour rebuilds every ~8 steps): thread 0 sizes the buffers; each thread's
+  // bounding box of its share; their union, the size levels and the grids in thread 0; the counting sort's
+  // four phases (count_cells, cell_sum, place_cells, fill_cells); the search of the finder chunks (a
+  // WorkQueue); the chunks' offsets in thread 0; then each thread copies its chunks into `out` (the caller
+  // syncs before reading it).
   long k0 = 0, k1 = 0;
   t.range(static_cast<long>(n), k0, k1);
   std::array<double, 6> box{x[0].x, x[0].y, x[0].z, x[0].x, x[0].y, x[0].z};
@@ -138,7 +139,16 @@ void NeighborSearch::build(const std::vector<Vec3>& x, const std::vector<double>
   t.sync();
   count_cells(x, t.me, k0, k1);
   t.sync();
-  if (t.me == 0) place_cells(t.size);
+  // The cells' starts and the threads' cursors: a prefix sum over all levels' cells, each thread its range of
+  // them (a serial pass over a chapter-7 pour's ~2 M mostly empty cells was ~4 % of thread 0's time at 2
+  // threads, the other waiting).
+  long g0 = 0, g1 = 0;
+  t.range(static_cast<long>(cells_), g0, g1);
+  range_sums_[static_cast<std::size_t>(t.me)] = cell_sum(t.size, g0, g1);
+  t.sync();
+  std::uint64_t base = 0;
+  for (int u = 0; u < t.me; ++u) base += range_sums_[static_cast<std::size_t>(u)];
+  place_cells(t.size, g0, g1, base);
   t.sync();
   fill_cells(x, radius, t.me, k0, k1);
   if (side && t.size > 1) side(Team{t.me, t.size, nullptr});
@@ -219,15 +229,17 @@ void NeighborSearch::set_up(const std::vector<Vec3>& x, const std::vector<double
     while (cells(L.cell) > kCellsPerParticle * static_cast<double>(L.count) + 64.0) L.cell *= 1.5;
     L.inv = 1.0 / L.cell;
     L.start.resize(static_cast<std::size_t>(L.dim[0] * L.dim[1] * L.dim[2]) + 1);
+    L.start.back() = static_cast<std::uint32_t>(L.count);  // (place_cells fills the others)
     cells_ += L.start.size() - 1;
   }
   count_.resize(static_cast<std::size_t>(threads));
+  range_sums_.resize(static_cast<std::size_t>(threads));
 }
 
-// The counting sort of particles k0 .. k1 (a thread's share) into the levels' cells, in three phases with a
-// team sync between them: each thread counts its share's particles per cell into its own count_ (and keeps
-// each particle's cell), one thread turns the counts into every cell's start and each thread's cursor in it,
-// then each thread places its share. A cell holds the particles in ascending index (thread 0's share first,
+// The counting sort of particles k0 .. k1 (a thread's share) into the levels' cells, in phases with a team
+// sync between them: each thread counts its share's particles per cell into its own count_ (and keeps each
+// particle's cell), the threads turn the counts into every cell's start and each thread's cursor in it (each
+// a range of the cells: cell_sum, place_cells), then each thread places its share. A cell holds the particles in ascending index (thread 0's share first,
 // each share ascending): the same order as the one-thread sort, so the same pairs in the same order. (One
 // thread sorted all of them while the other waited: at 2 threads this serial phase was ~21 % of the 52k
 // bench pour's rebuild, and it read the other thread's positions from its cache.)
@@ -257,21 +269,39 @@ void NeighborSearch::count_cells(const std::vector<Vec3>& x, int me, long k0, lo
   }
 }
 
-void NeighborSearch::place_cells(int threads) {
+// The particles counted in cells [g0, g1) of all levels' cells (count_: the threads' counts).
+std::uint64_t NeighborSearch::cell_sum(int threads, long g0, long g1) const {
+  std::uint64_t sum = 0;
+  for (int t = 0; t < threads; ++t) {
+    const std::uint32_t* count = count_[static_cast<std::size_t>(t)].data();
+    for (long g = g0; g < g1; ++g) sum += count[g];
+  }
+  return sum;
+}
+
+// Cells [g0, g1) of all levels' cells, `base` particles counted before g0 (in the cells of lower index):
+// each cell's start in its level's `sorted` and each thread's cursor in it (its count until then). The
+// global running count less the particles of the lower levels is a level's own running count, so the
+// ranges give the numbers a serial pass over every cell gives.
+void NeighborSearch::place_cells(int threads, long g0, long g1, std::uint64_t base) {
+  std::uint64_t below = 0;  // the particles of the levels before L
   for (Level& L : lev_) {
-    if (L.count == 0) continue;
-    const std::size_t cells = L.start.size() - 1;
-    std::uint32_t run = 0;
-    for (std::size_t c = 0; c < cells; ++c) {
-      L.start[c] = run;
-      for (int t = 0; t < threads; ++t) {
-        std::uint32_t& slot = count_[static_cast<std::size_t>(t)][L.first + c];
-        const std::uint32_t here = slot;
-        slot = run;  // thread t's cursor in cell c
-        run += here;
+    const long first = static_cast<long>(L.first), last = first + static_cast<long>(L.start.size()) - 1;
+    const long c0 = std::max(g0, first), c1 = std::min(g1, last);
+    if (L.count > 0 && c0 < c1) {
+      auto run = static_cast<std::uint32_t>(base - below);
+      for (long g = c0; g < c1; ++g) {
+        L.start[static_cast<std::size_t>(g - first)] = run;
+        for (int t = 0; t < threads; ++t) {
+          std::uint32_t& slot = count_[static_cast<std::size_t>(t)][static_cast<std::size_t>(g)];
+          const std::uint32_t here = slot;
+          slot = run;  // thread t's cursor in cell g
+          run += here;
+        }
       }
+      base = below + run;
     }
-    L.start[cells] = run;
+    below += L.count;
   }
 }
 

@@ -84,9 +84,11 @@ class NeighborSearch {
 
   std::size_t cells_ = 0;                          // all levels' cells
   std::vector<std::vector<std::uint32_t>> count_;  // per thread and cell: its particles, then its cursor
+  std::vector<std::uint64_t> range_sums_;          // per thread: the particles counted in its range of cells
   void set_up(const std::vector<Vec3>& x, const std::vector<double>& radius, double skin, int threads);
   void count_cells(const std::vector<Vec3>& x, int me, long k0, long k1);
-  void place_cells(int threads);
+  std::uint64_t cell_sum(int threads, long g0, long g1) const;
+  void place_cells(int threads, long g0, long g1, std::uint64_t base);
   void fill_cells(const std::vector<Vec3>& x, const std::vector<double>& radius, int me, long k0, long k1);
   void search_chunk(std::size_t c, const std::vector<Vec3>& x, const std::vector<double>& radius, double skin,
                     const Vec3& lo);

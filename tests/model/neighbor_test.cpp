@@ -76,6 +76,41 @@ TEST_CASE("neighbor: the list and its order do not depend on the thread count, n
   }
 }
 
+// The threads share the counting sort's cells by ranges of all levels' cells (model/neighbor.cpp: cell_sum,
+// place_cells), so a range may begin inside one level and end several levels further on. Five filled levels
+// (radii 0.5-12 mm, log-uniform): on 2 and 3 threads the same pairs in the same order as on one, each level's
+// cells starting where the one-thread sort starts them, and the pairs those of brute force.
+TEST_CASE("neighbor: cells shared by ranges across five size levels give the one-thread list") {
+  Rng rng(41);
+  std::vector<Vec3> x;
+  std::vector<double> r;
+  for (int k = 0; k < 4000; ++k) {
+    x.push_back({rng.uniform(0, 0.2), rng.uniform(0, 0.2), rng.uniform(0, 0.1)});
+    r.push_back(0.5e-3 * std::pow(24.0, std::pow(rng.uniform(0, 1), 2.0)));  // most small, some up to 12 mm
+  }
+  const double skin = 0.4e-3;
+  NeighborSearch one;
+  CandidatePairs ref;
+  one.build(x, r, skin, ref, 1);
+  long filled = 0;
+  for (const auto& level : one.levels()) filled += level.count > 0;
+  REQUIRE(filled >= 4);
+  CHECK(as_set(ref) == as_set(brute_force_pairs(x, r, skin)));
+  for (int threads : {2, 3}) {
+    CAPTURE(threads);
+    NeighborSearch many;
+    CandidatePairs out;
+    many.build(x, r, skin, out, threads);
+    CHECK(out.i == ref.i);
+    CHECK(out.j == ref.j);
+    REQUIRE(many.levels().size() == one.levels().size());
+    for (std::size_t l = 0; l < one.levels().size(); ++l) {
+      CHECK(many.levels()[l].start == one.levels()[l].start);
+      CHECK(many.levels()[l].sorted == one.levels()[l].sorted);
+    }
+  }
+}
+
 TEST_CASE("neighbor: the candidate scan gives the scalar loop's pairs in its order, boundary distances too") {
   // 40 candidates around a finder at the origin (so d is exact): random ones, and every fifth on the
   // cut-off along x (d^2 == cut^2: not a pair) or a hair inside it. Every range s0 .. s1 of them (lengths
