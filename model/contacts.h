@@ -105,6 +105,7 @@ struct PairList {
   void partition(int threads, const std::vector<Vec3>& x, const std::vector<double>* extra = nullptr,
                  const std::vector<double>* share = nullptr, const std::array<double, 6>* box = nullptr);
   std::vector<double> work;
+  std::vector<double> cost_scratch;  // partition()'s cost per particle (kept: no allocation per partition)
   // What partition() cuts: Slabs::index where the store is in a spatial order (World's sort at rebuilds,
   // [neighbor] sort_every > 0): index ranges are then spatial slabs too, and each thread's particles, pairs
   // and their cache lines are its own. Slabs::space cuts across the longest side of the bounding box (a
