@@ -176,63 +176,6 @@ TEST_CASE("contacts: one law for every pair is detected at the rebuild (its para
   CHECK(list(2, true) == PairList::kNone);
 }
 
-TEST_CASE("contacts: the partition gives each thread its share of the cost") {
-  Rng rng(4);
-  Particles p;
-  for (int k = 0; k < 2000; ++k)
-    p.add(0, 1e-3, 2760, {rng.uniform(0, 0.1), rng.uniform(0, 0.03), rng.uniform(0, 0.02)}, {}, {});
-  NeighborSearch search;
-  CandidatePairs c;
-  search.build(p.x, p.radius, 5e-4, c, 1);
-  PairList L;
-  L.rebuild(c, p, 1, 1);
-  for (const std::vector<double>& share : {std::vector<double>{0.5, 0.5}, {0.2, 0.8}, {0.1, 0.3, 0.6}}) {
-    // With the search's bounding box of the same positions (as the rebuild passes it): the same partition.
-    PairList B = L;
-    B.partition(static_cast<int>(share.size()), p.x, nullptr, &share, &search.box());
-    L.partition(static_cast<int>(share.size()), p.x, nullptr, &share);
-    CHECK(B.owner == L.owner);
-    CHECK(B.mine == L.mine);
-    CHECK(B.work == L.work);
-    double total = 0.0;
-    for (double w : L.work) total += w;
-    for (std::size_t t = 0; t < share.size(); ++t) {
-      CAPTURE(t);
-      CHECK(L.work[t] / total == doctest::Approx(share[t]).epsilon(0.02));
-      CHECK(!L.own[t].empty());
-    }
-  }
-}
-
-// Slabs::index (a store in spatial order): each thread owns one range of the dense index, the ranges in
-// thread order, each with its share of the cost, whatever the positions (here in no order at all, where
-// Slabs::space would interleave the owners along the index).
-TEST_CASE("contacts: index slabs are index ranges, each with its share of the cost") {
-  Rng rng(5);
-  Particles p;
-  for (int k = 0; k < 2000; ++k)
-    p.add(0, 1e-3, 2760, {rng.uniform(0, 0.1), rng.uniform(0, 0.03), rng.uniform(0, 0.02)}, {}, {});
-  CandidatePairs c = build_pairs(p.x, p.radius, 5e-4);
-  PairList L;
-  L.rebuild(c, p, 1, 1);
-  L.slabs = PairList::Slabs::index;
-  for (const std::vector<double>& share : {std::vector<double>{0.5, 0.5}, {0.2, 0.8}, {0.1, 0.3, 0.6}}) {
-    L.partition(static_cast<int>(share.size()), p.x, nullptr, &share);
-    double total = 0.0;
-    for (double w : L.work) total += w;
-    std::uint32_t next = 0;
-    for (std::size_t t = 0; t < share.size(); ++t) {
-      CAPTURE(t);
-      REQUIRE(!L.own[t].empty());
-      CHECK(L.own[t].front() == next);
-      CHECK(L.own[t].back() - L.own[t].front() + 1 == L.own[t].size());
-      next = L.own[t].back() + 1;
-      CHECK(L.work[t] / total == doctest::Approx(share[t]).epsilon(0.02));
-    }
-    CHECK(next == p.size());
-  }
-}
-
 // The history carry-over at a rebuild (PairList::rebuild tries the old pair after the last one found, then
 // the old row of the first particle): a new list that keeps most old pairs in order, drops some, inserts new
 // ones and swaps neighbours carries exactly the springs of the old touching pairs, zeros elsewhere, on 1 and
