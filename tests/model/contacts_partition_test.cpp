@@ -6,6 +6,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <vector>
 
 #include "base/rng.h"
@@ -13,6 +14,22 @@
 
 using namespace pastemix;
 using namespace pastemix::model;
+
+namespace {
+
+// n spheres of 1 mm radius uniform in a 10 x 3 x 2 cm box, in no spatial order, into p; their pair list
+// (skin 0.5 mm).
+PairList cloud_list(std::uint64_t seed, int n, Particles& p) {
+  Rng rng(seed);
+  for (int k = 0; k < n; ++k)
+    p.add(0, 1e-3, 2760, {rng.uniform(0, 0.1), rng.uniform(0, 0.03), rng.uniform(0, 0.02)}, {}, {});
+  CandidatePairs c = build_pairs(p.x, p.radius, 5e-4);
+  PairList L;
+  L.rebuild(c, p, 1, 1);
+  return L;
+}
+
+}  // namespace
 
 TEST_CASE("contacts: the partition gives each thread its share of the cost") {
   Rng rng(4);
@@ -46,13 +63,8 @@ TEST_CASE("contacts: the partition gives each thread its share of the cost") {
 // thread order, each with its share of the cost, whatever the positions (here in no order at all, where
 // Slabs::space would interleave the owners along the index).
 TEST_CASE("contacts: index slabs are index ranges, each with its share of the cost") {
-  Rng rng(5);
   Particles p;
-  for (int k = 0; k < 2000; ++k)
-    p.add(0, 1e-3, 2760, {rng.uniform(0, 0.1), rng.uniform(0, 0.03), rng.uniform(0, 0.02)}, {}, {});
-  CandidatePairs c = build_pairs(p.x, p.radius, 5e-4);
-  PairList L;
-  L.rebuild(c, p, 1, 1);
+  PairList L = cloud_list(5, 2000, p);
   L.slabs = PairList::Slabs::index;
   for (const std::vector<double>& share : {std::vector<double>{0.5, 0.5}, {0.2, 0.8}, {0.1, 0.3, 0.6}}) {
     L.partition(static_cast<int>(share.size()), p.x, nullptr, &share);
@@ -76,13 +88,8 @@ TEST_CASE("contacts: index slabs are index ranges, each with its share of the co
 // pair, cross_pairs the pair of each slot, and every particle of a cross pair has a ghost slot; each thread's
 // particles are listed once, ascending, and every particle by its owner.
 TEST_CASE("contacts: the threads' lists hold every pair where it is needed, once, in order") {
-  Rng rng(6);
   Particles p;
-  for (int k = 0; k < 3000; ++k)
-    p.add(0, 1e-3, 2760, {rng.uniform(0, 0.1), rng.uniform(0, 0.03), rng.uniform(0, 0.02)}, {}, {});
-  CandidatePairs c = build_pairs(p.x, p.radius, 5e-4);
-  PairList L;
-  L.rebuild(c, p, 1, 1);
+  PairList L = cloud_list(6, 3000, p);
   REQUIRE(L.size() > 3000);
   for (PairList::Slabs slabs : {PairList::Slabs::space, PairList::Slabs::index})
     for (int threads : {2, 3}) {
