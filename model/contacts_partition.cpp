@@ -66,7 +66,8 @@ void owners_by_space(const std::vector<Vec3>& x, const double* cost, const Vec3&
   int t = 1;
   for (int b = 0; b < kBins && t < n_threads; ++b) {
     run += bin[static_cast<std::size_t>(b)];
-    while (t < n_threads && run >= total * upto[static_cast<std::size_t>(t)]) first[static_cast<std::size_t>(t++)] = b + 1;
+    while (t < n_threads && run >= total * upto[static_cast<std::size_t>(t)])
+      first[static_cast<std::size_t>(t++)] = b + 1;
   }
   for (std::size_t a = 0; a < np; ++a) {
     // The slab whose first bin is the last at or below the particle's (first[] ascends from first[0] = 0).

@@ -239,10 +239,11 @@ void NeighborSearch::set_up(const std::vector<Vec3>& x, const std::vector<double
 // The counting sort of particles k0 .. k1 (a thread's share) into the levels' cells, in phases with a team
 // sync between them: each thread counts its share's particles per cell into its own count_ (and keeps each
 // particle's cell), the threads turn the counts into every cell's start and each thread's cursor in it (each
-// a range of the cells: cell_sum, place_cells), then each thread places its share. A cell holds the particles in ascending index (thread 0's share first,
-// each share ascending): the same order as the one-thread sort, so the same pairs in the same order. (One
-// thread sorted all of them while the other waited: at 2 threads this serial phase was ~21 % of the 52k
-// bench pour's rebuild, and it read the other thread's positions from its cache.)
+// a range of the cells: cell_sum, place_cells), then each thread places its share. A cell holds the
+// particles in ascending index (thread 0's share first, each share ascending): the same order as the
+// one-thread sort, so the same pairs in the same order. (One thread sorted all of them while the other
+// waited: at 2 threads this serial phase was ~21 % of the 52k bench pour's rebuild, and it read the other
+// thread's positions from its cache.)
 void NeighborSearch::count_cells(const std::vector<Vec3>& x, int me, long k0, long k1) {
   std::vector<std::uint32_t>& count = count_[static_cast<std::size_t>(me)];
   count.assign(cells_, 0);
