@@ -77,9 +77,10 @@ TEST_CASE("neighbor: the list and its order do not depend on the thread count, n
 }
 
 // The threads share the counting sort's cells by ranges of all levels' cells (model/neighbor.cpp: cell_sum,
-// place_cells), so a range may begin inside one level and end several levels further on. Five filled levels
-// (radii 0.5-12 mm, log-uniform): on 2 and 3 threads the same pairs in the same order as on one, each level's
-// cells starting where the one-thread sort starts them, and the pairs those of brute force.
+// place_cells), so a range may begin inside one level and end several levels further on. Radii 0.5-12 mm
+// (most small) make five size levels, at least four of them filled: on 2 and 3 threads the same pairs in the
+// same order as on one, each level's cells starting where the one-thread sort starts them, and the pairs
+// those of brute force.
 TEST_CASE("neighbor: cells shared by ranges across five size levels give the one-thread list") {
   Rng rng(41);
   std::vector<Vec3> x;
