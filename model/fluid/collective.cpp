@@ -77,11 +77,6 @@ void chord_integrals(double y_lo, double step, long row0, long n, double c, doub
   }
 }
 
-// The order of two intervals (start, then end; m): std::pair's, without its three-way comparison.
-inline bool before(const std::pair<double, double>& a, const std::pair<double, double>& b) {
-  return a.first < b.first || (!(b.first < a.first) && a.second < b.second);
-}
-
 // The covered lengths (m) of strips [row0, row1) of layout s, each strip's merged segments in order, appended
 // to `out`: disc_union_area's length is their sum in this order (strips of different callers, taken in
 // ascending row order, give the same sum to the bit).
@@ -147,17 +142,36 @@ void strip_lengths(const double* cx, const double* cy, const double* r, std::siz
     for (long row = b0; row < b1; ++row) {
       auto& v = iv[static_cast<std::size_t>(row - b0)];
       if (v.empty()) continue;
-      for (std::size_t i = 1; i < v.size(); ++i)  // insertion sort: nearly sorted already
-        for (std::size_t j = i; j > 0 && before(v[j], v[j - 1]); --j) std::swap(v[j], v[j - 1]);
+      // Insertion sort by the start alone (nearly sorted already), each interval moved once into the hole its
+      // larger predecessors leave: intervals with equal starts then keep their arrival order instead of
+      // being ordered by their ends, which changes no segment (an interval starting where the one before it
+      // starts never opens a segment), so the lengths are the same bits.
+      for (std::size_t i = 1; i < v.size(); ++i) {
+        const std::pair<double, double> x = v[i];
+        std::size_t j = i;
+        for (; j > 0 && x.first < v[j - 1].first; --j) v[j] = v[j - 1];
+        v[j] = x;
+      }
+      // The merged segments' lengths, without a branch on "does this interval start a new segment" (as
+      // unpredictable as the spheres' spacing) and without push_back, which kept `e` on the stack: every
+      // interval writes the running segment's length e - a at the next free slot and moves that slot on only
+      // where a gap ends the segment, so the slot keeps the length the segment had when it ended, the value
+      // the branch wrote: the same bits. With the sort above (issue 19): one footprint of case 3's 12,108
+      // discs at t = 1.5 s, 15.2-16.2 -> 14.1-14.8 ms (min of 40 each, five interleaved runs).
+      const std::size_t base = out.size();
+      out.resize(base + v.size());  // at most one segment per interval
+      double* seg = out.data() + base;
+      std::size_t k = 0;
       double a = v[0].first, e = v[0].second;
       for (std::size_t i = 1; i < v.size(); ++i) {
-        if (v[i].first > e) {
-          out.push_back(e - a);
-          a = v[i].first;
-        }
+        const bool gap = v[i].first > e;
+        seg[k] = e - a;
+        k += gap;
+        a = gap ? v[i].first : a;
         e = std::max(e, v[i].second);
       }
-      out.push_back(e - a);
+      seg[k++] = e - a;
+      out.resize(base + k);
     }
   }
 }
