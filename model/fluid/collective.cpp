@@ -156,8 +156,8 @@ void strip_lengths(const double* cx, const double* cy, const double* r, std::siz
       // unpredictable as the spheres' spacing) and without push_back, which kept `e` on the stack: every
       // interval writes the running segment's length e - a at the next free slot and moves that slot on only
       // where a gap ends the segment, so the slot keeps the length the segment had when it ended, the value
-      // the branch wrote: the same bits. With the sort above (issue 19): one footprint of case 3's 12,108
-      // discs at t = 1.5 s, 15.2-16.2 -> 14.1-14.8 ms (min of 40 each, five interleaved runs).
+      // the branch wrote: the same bits. With the sort above (issue 19; bench/footprint_probe, 12,108 discs,
+      // five interleaved runs against the previous form): 11.45-11.96 -> 10.87-11.27 ms per footprint.
       const std::size_t base = out.size();
       out.resize(base + v.size());  // at most one segment per interval
       double* seg = out.data() + base;
