@@ -15,14 +15,16 @@ namespace {
 
 // Candidates are taken in chunks: a branch-free filter pass finds the touching pairs of the chunk (keeping
 // their separation vectors), then a dense pass computes their forces. About 40 % of the candidates of a
-// settled bed are not touching; a mixed loop mispredicted the "touching?" branch. A chunk's touching pairs
-// go to the batch kernel 64 at a time and the last batch's lanes past a multiple of eight one at a time, so
-// a chunk costs a part batch and a scalar tail whatever its size: with chunks of 256 candidates, a chapter-7
-// pour's (7.7 candidates per touching pair, 33 touching pairs per chunk) paid them every 33 pairs. Chunks of
-// 2,048 (filter output ~106 kB of stack, its used part in L1 or L2): same pairs in the same order, so the
-// same bits; contact stage, interleaved runs against 256 (issue 19, session 36): chapter-7 segment, 1
-// thread, 7.3 / 10.7 -> 5.6 / 8.0 s; bench bed 0.783 -> 0.726 s (1 thread), 0.521 -> 0.485 s (2), pour
-// 0.182 -> 0.166 s, 0.133 -> 0.123 s (min of 4); case-3 segment, 2 threads, 4.5 / 4.6 -> 4.2 / 4.3 s.
+// settled bed are not touching; a mixed loop mispredicted the "touching?" branch. What a chunk costs beside
+// its pairs (the switch from the filter's sequential sweep of the pair arrays to the staging's scattered
+// loads and back, a part batch, a scalar tail) came every 33 touching pairs in a chapter-7 pour with chunks
+// of 256 candidates (7.7 candidates per touching pair). Chunks of 2,048 (the filter's output ~106 kB of
+// stack, its used part in L1 or L2): the same pairs in the same order, so the same bits; contact stage in
+// interleaved runs against 256 (issue 19, session 36): chapter-7 segment, 1 thread, 7.3 / 10.7 -> 5.6 /
+// 8.0 s; bench bed 0.783 -> 0.726 s (1 thread), 0.521 -> 0.485 s (2), pour 0.182 -> 0.166 s, 0.133 ->
+// 0.123 s (min of 4); case-3 segment, 2 threads, 4.5 / 4.6 -> 4.2 / 4.3 s. The tail alone is not the cause:
+// padding the last group to eight lanes (staged and computed whole) changed neither 256's nor 2,048's
+// times beyond the noise.
 constexpr long kChunk = 2048;
 
 using Separations = model::Separations<kChunk>;
