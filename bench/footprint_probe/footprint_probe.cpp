@@ -20,6 +20,10 @@
 
 int main(int argc, char** argv) {
   long n = 12108, reps = 20, trials = 3;
+  if (argc % 2 == 0) {  // an option without its value
+    std::fprintf(stderr, "usage: pastemix_footprint_probe [--n N] [--reps R] [--trials T]\n");
+    return 2;
+  }
   for (int a = 1; a + 1 < argc; a += 2) {
     const long v = std::atol(argv[a + 1]);
     if (std::strcmp(argv[a], "--n") == 0) n = v;
