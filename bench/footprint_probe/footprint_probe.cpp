@@ -4,8 +4,8 @@
 // pile like case 3's at rest on the paste: n discs of radius uniform in [r_min, 2 r_min], centres uniform in a
 // 0.2 x 0.11 m rectangle (12,108 discs of 1.25-2.5 mm covering ~0.022 m2 about six deep, as case 3's pile at
 // t = 1.5 s seen from above: 12,108 spheres over 0.0221 m2 of its 0.2 x 0.165 m box), strips r_min / 16 wide
-// as the rule draws them. Prints the area to 17 digits (two builds that
-// give the same bits print the same number) and the best time of each trial.
+// as the rule draws them. Prints the area to 17 digits (two builds that give the same bits print the same
+// number) and the best time of each trial.
 //
 // Usage: pastemix_footprint_probe [--n N] [--reps R] [--trials T]   (defaults 12108 discs, 20 footprints, 3)
 #include <algorithm>

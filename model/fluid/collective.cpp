@@ -142,10 +142,12 @@ void strip_lengths(const double* cx, const double* cy, const double* r, std::siz
     for (long row = b0; row < b1; ++row) {
       auto& v = iv[static_cast<std::size_t>(row - b0)];
       if (v.empty()) continue;
-      // Insertion sort by the start alone (nearly sorted already), each interval moved once into the hole its
-      // larger predecessors leave: intervals with equal starts then keep their arrival order instead of
-      // being ordered by their ends, which changes no segment (an interval starting where the one before it
-      // starts never opens a segment), so the lengths are the same bits.
+      // Insertion sort by the start alone, each interval moved once into the hole its larger predecessors
+      // leave. The discs come in ascending x, so the starts are partly sorted, but a pile's layers overlap in
+      // projection: in a perf profile of one footprint of case 3's discs at t = 1.5 s this sort was about half
+      // of the function. Intervals with equal starts keep their arrival order instead of being ordered by
+      // their ends, which changes no segment (an interval starting where the one before it starts never
+      // opens a segment), so the lengths are the same bits.
       for (std::size_t i = 1; i < v.size(); ++i) {
         const std::pair<double, double> x = v[i];
         std::size_t j = i;
