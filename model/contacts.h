@@ -28,6 +28,7 @@
 #include "model/laws/registry.h"
 #include "model/neighbor.h"
 #include "model/particles.h"
+#include "model/wall_batch.h"
 #include "model/walls.h"
 
 namespace pastemix::model {
@@ -287,12 +288,51 @@ inline void wall_forces_block(const std::vector<typename Law::Params>& table,
     }
     nb = 0;
   };
-  const auto visit = [&](std::size_t a) {
-    for (std::uint32_t c = wc.start[a]; c < wc.start[a + 1]; ++c) {
+  // The block's candidates, in particle and then wall order, kCands at a time: first their distances (those
+  // to a surface of revolution eight at a time, model/wall_batch.h; the others one at a time as touch_wall
+  // computes them), then, in the same order, touch_wall's flags and springs and the touching ones staged.
+  constexpr int kCands = 128;
+  std::uint32_t cand_a[kCands], cand_c[kCands];
+  double cand_dist[kCands];
+  Vec3 cand_n[kCands];
+  int nc = 0;
+  RevolutionLanes R;
+  int lane_of[RevolutionLanes::kLanes];  // the candidates in R's lanes
+  const auto distances = [&] {
+    int nr = 0;
+    const auto revolutions = [&] {
+      revolution_distances(R, nr);
+      for (int l = 0; l < nr; ++l) cand_dist[lane_of[l]] = R.dist[l], cand_n[lane_of[l]] = {R.nx[l], R.ny[l], R.nz[l]};
+      nr = 0;
+    };
+    for (int e = 0; e < nc; ++e) {
+      const std::size_t a = cand_a[e];
+      const int k = wc.near[cand_c[e]];
+      if (!ws.active[k]) {
+        cand_dist[e] = 1e300;
+      } else if (ws.rect[k]) {
+        cand_dist[e] = rectangle_distance(walls[k], ws.origin[k], p.x[a], &cand_n[e]);
+      } else if (walls[k].kind == WallKind::revolution) {
+        R.set(nr, walls[k], ws.origin[k], p.x[a]), lane_of[nr] = e;
+        if (++nr == RevolutionLanes::kLanes) revolutions();
+      } else {
+        cand_dist[e] = wall_distance(walls[k], ws.shift[k], p.x[a], &cand_n[e]);
+      }
+    }
+    if (nr > 0) revolutions();
+  };
+  const auto stage = [&] {
+    distances();
+    for (int e = 0; e < nc; ++e) {
+      const std::size_t a = cand_a[e];
+      const std::uint32_t c = cand_c[e];
       const int k = wc.near[c];
-      Vec3 n_to_wall;
-      double dist, overlap;
-      if (!touch_wall(walls, ws, p, wc, a, c, n_to_wall, dist, overlap)) continue;
+      const double dist = cand_dist[e], overlap = p.radius[a] - dist;
+      const bool touch = !(overlap <= 0.0);  // NaN: touching, as touch_wall
+      if (!touch && wc.touching[c]) std::fill_n(wc.history.data() + c * std::size_t{Law::history_size}, Law::history_size, 0.0);
+      wc.touching[c] = touch;
+      if (!touch) continue;
+      const Vec3 n_to_wall = cand_n[e];
       const double r_arm = std::max(dist, 0.0);
       Vec3 v_rel = ws.vel[k] - p.v[a];
       v_rel -= cross(p.omega[a], n_to_wall * r_arm);
@@ -305,6 +345,13 @@ inline void wall_forces_block(const std::vector<typename Law::Params>& table,
       Law::load_params(B, nb, table[pair[nb]]);
       slot[nb] = c, who[nb] = static_cast<std::uint32_t>(a), arm[nb] = r_arm;
       if (++nb == Law::kBatch) flush();
+    }
+    nc = 0;
+  };
+  const auto visit = [&](std::size_t a) {
+    for (std::uint32_t c = wc.start[a]; c < wc.start[a + 1]; ++c) {
+      cand_a[nc] = static_cast<std::uint32_t>(a), cand_c[nc] = c;
+      if (++nc == kCands) stage();
     }
   };
   // A block of consecutive particles (one thread, or a run of a thread's slab): only its listed ones, in the
@@ -320,6 +367,7 @@ inline void wall_forces_block(const std::vector<typename Law::Params>& table,
   } else {
     for (int q = 0; q < m; ++q) visit(static_cast<std::size_t>(idx[q]));
   }
+  if (nc > 0) stage();
   if (nb > 0) flush();
 }
 

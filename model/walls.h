@@ -110,4 +110,24 @@ inline double rectangle_distance(const Wall& w, const Vec3& o, const Vec3& p, Ve
   return len;
 }
 
+// The revolution case of wall_distance, with o = origin + shift: the closest point of the meridian segment
+// (r0, z0)-(r1, z1) in the point's (rho, z) half-plane. Inline, and written so that model/wall_batch.h's
+// eight-lane form performs the same operations in the same order (the same bits).
+inline double revolution_distance(const Wall& w, const Vec3& o, const Vec3& p, Vec3* n_to_wall) {
+  const double dx = p.x - o.x, dy = p.y - o.y;
+  const double rho = std::sqrt(dx * dx + dy * dy);
+  const double z = p.z - o.z;
+  const double ar = w.r1 - w.r0, az = w.z1 - w.z0;
+  const double l2 = ar * ar + az * az;
+  double s = l2 > 0.0 ? ((rho - w.r0) * ar + (z - w.z0) * az) / l2 : 0.0;
+  s = std::min(std::max(s, 0.0), 1.0);
+  const double cr = w.r0 + s * ar, cz = w.z0 + s * az;
+  const double er = cr - rho, ez = cz - z;
+  const double len = std::sqrt(er * er + ez * ez);
+  // Radial unit vector of the point (any horizontal direction on the axis).
+  const double ux = rho > 0.0 ? dx / rho : 1.0, uy = rho > 0.0 ? dy / rho : 0.0;
+  *n_to_wall = len > 0.0 ? Vec3{ux * er / len, uy * er / len, ez / len} : Vec3{0, 0, -1};
+  return len;
+}
+
 }  // namespace pastemix::model

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 #include "model/world.h"
@@ -52,7 +53,11 @@ namespace {
 struct WallScene {
   std::vector<Wall> walls;
   Particles p;
-  WallScene() {
+  explicit WallScene(bool funnel = false) {
+    if (funnel) {
+      make_funnel();
+      return;
+    }
     const double L = 0.05;
     walls = model::test::open_box(L, 1);
     p.enable_rotation();
@@ -76,12 +81,47 @@ struct WallScene {
       p.rolling_capacity.back() = 1e-4 * rng.uniform(0, 1);
     }
   }
+  // A funnel as the scenes build it (surfaces of revolution about x = y = 0.1 m, material 1): a cone from
+  // r = 2 cm at z = 0.25 m to 9.5 cm at 0.37 m and its exit tube, r = 2 cm from 0.23 to 0.25 m, with a box floor
+  // below; 300 spheres against the cone or the tube from inside (a third pressed in, the rest within 0.3 r),
+  // some on the axis.
+  void make_funnel() {
+    const auto revolution = [&](double r0, double z0, double r1, double z1) {
+      Wall w;
+      w.kind = WallKind::revolution, w.material = 1, w.origin = {0.1, 0.1, 0.0};
+      w.r0 = r0, w.z0 = z0, w.r1 = r1, w.z1 = z1;
+      walls.push_back(w);
+    };
+    revolution(0.02, 0.25, 0.095, 0.37);
+    revolution(0.02, 0.23, 0.02, 0.25);
+    walls.push_back(model::test::open_box(0.2, 1)[0]);
+    p.enable_rotation();
+    Rng rng(11);
+    for (int k = 0; k < 300; ++k) {
+      const double r = rng.uniform(1.2e-3, 2.5e-3);
+      const double gap = k % 3 == 0 ? -r * rng.uniform(1e-4, 0.02) : r * rng.uniform(0.0, 0.3);
+      const Wall& w = walls[k % 4 == 0 ? 1 : 0];
+      // A point of the meridian segment and the unit normal into the funnel (towards the axis; up on the cone).
+      const double s = rng.uniform(0.05, 0.95), ar = w.r1 - w.r0, az = w.z1 - w.z0, l = std::hypot(ar, az);
+      const double rho = w.r0 + s * ar - (r + gap) * az / l, z = w.z0 + s * az + (r + gap) * ar / l;
+      const double phi = rng.uniform(0.0, 6.283185307179586);
+      Vec3 x{0.1 + rho * std::cos(phi), 0.1 + rho * std::sin(phi), z};
+      if (k % 50 == 7) x.x = 0.1, x.y = 0.1;  // on the axis (no radial direction)
+      p.add(0, r, 2760, x, {rng.normal(), rng.normal(), rng.normal()},
+            {100 * rng.normal(), 100 * rng.normal(), 100 * rng.normal()});
+      p.f.back() = {rng.normal(), rng.normal(), rng.normal()};
+      p.torque.back() = {1e-3 * rng.normal(), 1e-3 * rng.normal(), 0};
+      p.rolling_capacity.back() = 1e-4 * rng.uniform(0, 1);
+    }
+  }
 };
 
 }  // namespace
 
-TEST_CASE("contacts: the batched wall pass gives the per-particle wall pass's bits (forces, springs, flags)") {
-  WallScene a, b;
+namespace {
+
+void check_batched_walls(WallScene& a, WallScene& b) {
+  const int n_walls = static_cast<int>(a.walls.size());
   Material rock{"rock", 2760, 4.68e7, 0.19}, steel{"steel", 7800, 2e11, 0.3};
   std::vector<HertzMindlin::Params> laws;
   std::vector<ConstantTorque::Params> rolling;
@@ -92,8 +132,8 @@ TEST_CASE("contacts: the batched wall pass gives the per-particle wall pass's bi
     }
   const StepContext ctx{0.0, 1e-5, 2};
   WallContacts wa, wb;
-  wa.resize(a.p.size(), 5, 3);
-  wb.resize(b.p.size(), 5, 3);
+  wa.resize(a.p.size(), n_walls, 3);
+  wb.resize(b.p.size(), n_walls, 3);
   WallState ws;
   ws.update(a.walls, 0.0);
   std::vector<long> idx(a.p.size());
@@ -141,6 +181,19 @@ TEST_CASE("contacts: the batched wall pass gives the per-particle wall pass's bi
   MESSAGE(touching << " touching wall contacts of " << wa.near.size() << " candidates");
   CHECK(touching > 50);
   CHECK(static_cast<std::size_t>(touching) < wa.near.size());
+}
+
+}  // namespace
+
+TEST_CASE("contacts: the batched wall pass gives the per-particle wall pass's bits (forces, springs, flags)") {
+  WallScene a, b;
+  check_batched_walls(a, b);
+}
+
+// The funnel's distances go eight at a time through model/wall_batch.h in the batched pass.
+TEST_CASE("contacts: the batched wall pass gives the per-particle pass's bits against a funnel's cone and tube") {
+  WallScene a(true), b(true);
+  check_batched_walls(a, b);
 }
 
 TEST_CASE("contacts: the wall candidate lists do not depend on the thread count") {
