@@ -98,6 +98,20 @@ fi
 
 steps_of() { [[ $1 == pour ]] && echo "$STEPS_POUR" || echo "$STEPS_BED"; }
 
+# The state of the vCPUs before and after the runs (bench/vcpu_probe: each CPU's random-read, latency and
+# arithmetic rates, pinned there in turn): on the project's VMs one vCPU at times reads memory 2-4x slower than
+# the other, which a ratio measured in those minutes carries. Kept in bench/results/<stamp>-vcpu.txt.
+VCPU_PROBE="$ROOT/build/pastemix_vcpu_probe"
+[[ -x "$VCPU_PROBE" ]] || cmake --build "$ROOT/build" --target pastemix_vcpu_probe >&2 || true
+vcpu_state() {  # label
+  if [[ -x "$VCPU_PROBE" ]]; then
+    { echo "# $1 ($(date -u +%H:%M:%S) UTC)"; "$VCPU_PROBE"; } | tee -a "$BENCH/results/$STAMP-vcpu.txt" >&2
+  else
+    echo "run.sh: no $VCPU_PROBE: the vCPUs' state is not recorded" >&2
+  fi
+}
+vcpu_state "before the runs"
+
 CPUTIME=("$PY" "$BENCH/tools/cputime.py")
 
 run_liggghts() {  # rolling|scaling scene threads tag steps [data input extra-vars...]
@@ -188,6 +202,7 @@ if [[ -n "$SCALING" ]]; then
   done
 fi
 
+vcpu_state "after the runs"
 liggghts_version="$(command -v liggghts) (Debian $(dpkg-query -W -f '${Version}' liggghts 2>/dev/null))"
 : > "$WORK/table.txt"
 for rolling in $ROLLINGS; do
@@ -202,4 +217,6 @@ if [[ -n "$SCALING" ]]; then
   echo -e "\n######## scaling series (pour, 1 thread, rolling $ROLLING)" | tee -a "$WORK/table.txt"
   "$PY" "$BENCH/tools/scaling.py" "$WORK/scaling" "$BENCH/results/$STAMP-scaling.csv" | tee -a "$WORK/table.txt"
 fi
+[[ -f "$BENCH/results/$STAMP-vcpu.txt" ]] &&
+  echo -e "\n######## the vCPUs (bench/vcpu_probe)" | cat - "$BENCH/results/$STAMP-vcpu.txt" | tee -a "$WORK/table.txt"
 echo "all tables: $WORK/table.txt" >&2
