@@ -293,8 +293,8 @@ inline void wall_forces_block(const std::vector<typename Law::Params>& table,
   // computes them), then, in the same order, touch_wall's flags and springs and the touching ones staged.
   constexpr int kCands = 128;
   std::uint32_t cand_a[kCands], cand_c[kCands];
-  double cand_dist[kCands];
-  Vec3 cand_n[kCands];
+  // Not Vec3[kCands]: its zero-initialisation was a 3 kB memset per block.
+  double cand_dist[kCands], cand_nx[kCands], cand_ny[kCands], cand_nz[kCands];
   int nc = 0;
   RevolutionLanes R;
   int lane_of[RevolutionLanes::kLanes];  // the candidates in R's lanes
@@ -302,21 +302,28 @@ inline void wall_forces_block(const std::vector<typename Law::Params>& table,
     int nr = 0;
     const auto revolutions = [&] {
       revolution_distances(R, nr);
-      for (int l = 0; l < nr; ++l) cand_dist[lane_of[l]] = R.dist[l], cand_n[lane_of[l]] = {R.nx[l], R.ny[l], R.nz[l]};
+      for (int l = 0; l < nr; ++l) {
+        const int e = lane_of[l];
+        cand_dist[e] = R.dist[l], cand_nx[e] = R.nx[l], cand_ny[e] = R.ny[l], cand_nz[e] = R.nz[l];
+      }
       nr = 0;
+    };
+    const auto one = [&](int e, double dist, const Vec3& n) {
+      cand_dist[e] = dist, cand_nx[e] = n.x, cand_ny[e] = n.y, cand_nz[e] = n.z;
     };
     for (int e = 0; e < nc; ++e) {
       const std::size_t a = cand_a[e];
       const int k = wc.near[cand_c[e]];
+      Vec3 n;
       if (!ws.active[k]) {
         cand_dist[e] = 1e300;
       } else if (ws.rect[k]) {
-        cand_dist[e] = rectangle_distance(walls[k], ws.origin[k], p.x[a], &cand_n[e]);
+        one(e, rectangle_distance(walls[k], ws.origin[k], p.x[a], &n), n);
       } else if (walls[k].kind == WallKind::revolution) {
         R.set(nr, walls[k], ws.origin[k], p.x[a]), lane_of[nr] = e;
         if (++nr == RevolutionLanes::kLanes) revolutions();
       } else {
-        cand_dist[e] = wall_distance(walls[k], ws.shift[k], p.x[a], &cand_n[e]);
+        one(e, wall_distance(walls[k], ws.shift[k], p.x[a], &n), n);
       }
     }
     if (nr > 0) revolutions();
@@ -332,7 +339,7 @@ inline void wall_forces_block(const std::vector<typename Law::Params>& table,
       if (!touch && wc.touching[c]) std::fill_n(wc.history.data() + c * std::size_t{Law::history_size}, Law::history_size, 0.0);
       wc.touching[c] = touch;
       if (!touch) continue;
-      const Vec3 n_to_wall = cand_n[e];
+      const Vec3 n_to_wall{cand_nx[e], cand_ny[e], cand_nz[e]};
       const double r_arm = std::max(dist, 0.0);
       Vec3 v_rel = ws.vel[k] - p.v[a];
       v_rel -= cross(p.omega[a], n_to_wall * r_arm);
