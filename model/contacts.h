@@ -213,6 +213,46 @@ inline bool touch_wall(const std::vector<Wall>& walls, const WallState& ws, cons
   return touch;
 }
 
+// A block's wall candidates (particle a[e], candidate c[e]) and, after measure(), each one's distance (m) and
+// unit vector towards its wall, as touch_wall computes them: a surface of revolution's (a funnel's cone and
+// tube) eight at a time (model/wall_batch.h: the scalar form's operations in its order, the same bits), the
+// others one at a time. The direction of an inactive wall's candidate is left unset (it never touches).
+struct WallCandidates {
+  static constexpr int kCands = 128;
+  std::uint32_t a[kCands], c[kCands];
+  // Not Vec3[kCands]: its zero-initialisation was a 3 kB memset per block of the wall pass.
+  double dist[kCands], nx[kCands], ny[kCands], nz[kCands];
+  int n = 0;
+
+  void set(int e, double d, const Vec3& v) { dist[e] = d, nx[e] = v.x, ny[e] = v.y, nz[e] = v.z; }
+  void measure(const std::vector<Wall>& walls, const WallState& ws, const Particles& p, const WallContacts& wc) {
+    RevolutionLanes R;
+    int lane_of[RevolutionLanes::kLanes];  // the candidates in R's lanes
+    int nr = 0;
+    const auto revolutions = [&] {
+      revolution_distances(R, nr);
+      for (int l = 0; l < nr; ++l) set(lane_of[l], R.dist[l], {R.nx[l], R.ny[l], R.nz[l]});
+      nr = 0;
+    };
+    for (int e = 0; e < n; ++e) {
+      const std::size_t q = a[e];
+      const int k = wc.near[c[e]];
+      Vec3 v;
+      if (!ws.active[k]) {
+        dist[e] = 1e300;
+      } else if (ws.rect[k]) {
+        set(e, rectangle_distance(walls[k], ws.origin[k], p.x[q], &v), v);
+      } else if (walls[k].kind == WallKind::revolution) {
+        R.set(nr, walls[k], ws.origin[k], p.x[q]), lane_of[nr] = e;
+        if (++nr == RevolutionLanes::kLanes) revolutions();
+      } else {
+        set(e, wall_distance(walls[k], ws.shift[k], p.x[q], &v), v);
+      }
+    }
+    if (nr > 0) revolutions();
+  }
+};
+
 // Wall forces of particle a added to f / t / roll, its candidate walls in wall order. Inline: the World
 // calls it inside its fused per-particle pass (forces, then the kick), one loop over the particles.
 template <class Law, class Roll>
@@ -288,58 +328,24 @@ inline void wall_forces_block(const std::vector<typename Law::Params>& table,
     }
     nb = 0;
   };
-  // The block's candidates, in particle and then wall order, kCands at a time: first their distances (those
-  // to a surface of revolution eight at a time, model/wall_batch.h; the others one at a time as touch_wall
-  // computes them), then, in the same order, touch_wall's flags and springs and the touching ones staged.
-  constexpr int kCands = 128;
-  std::uint32_t cand_a[kCands], cand_c[kCands];
-  // Not Vec3[kCands]: its zero-initialisation was a 3 kB memset per block.
-  double cand_dist[kCands], cand_nx[kCands], cand_ny[kCands], cand_nz[kCands];
-  int nc = 0;
-  RevolutionLanes R;
-  int lane_of[RevolutionLanes::kLanes];  // the candidates in R's lanes
-  const auto distances = [&] {
-    int nr = 0;
-    const auto revolutions = [&] {
-      revolution_distances(R, nr);
-      for (int l = 0; l < nr; ++l) {
-        const int e = lane_of[l];
-        cand_dist[e] = R.dist[l], cand_nx[e] = R.nx[l], cand_ny[e] = R.ny[l], cand_nz[e] = R.nz[l];
-      }
-      nr = 0;
-    };
-    const auto one = [&](int e, double dist, const Vec3& n) {
-      cand_dist[e] = dist, cand_nx[e] = n.x, cand_ny[e] = n.y, cand_nz[e] = n.z;
-    };
-    for (int e = 0; e < nc; ++e) {
-      const std::size_t a = cand_a[e];
-      const int k = wc.near[cand_c[e]];
-      Vec3 n;
-      if (!ws.active[k]) {
-        cand_dist[e] = 1e300;
-      } else if (ws.rect[k]) {
-        one(e, rectangle_distance(walls[k], ws.origin[k], p.x[a], &n), n);
-      } else if (walls[k].kind == WallKind::revolution) {
-        R.set(nr, walls[k], ws.origin[k], p.x[a]), lane_of[nr] = e;
-        if (++nr == RevolutionLanes::kLanes) revolutions();
-      } else {
-        one(e, wall_distance(walls[k], ws.shift[k], p.x[a], &n), n);
-      }
-    }
-    if (nr > 0) revolutions();
-  };
+  // The block's candidates, in particle and then wall order, WallCandidates::kCands at a time: first their
+  // distances (WallCandidates::measure), then, in the same order, touch_wall's flags and springs and the
+  // touching ones staged.
+  WallCandidates W;
+  int& nc = W.n;
   const auto stage = [&] {
-    distances();
+    W.measure(walls, ws, p, wc);
     for (int e = 0; e < nc; ++e) {
-      const std::size_t a = cand_a[e];
-      const std::uint32_t c = cand_c[e];
+      const std::size_t a = W.a[e];
+      const std::uint32_t c = W.c[e];
       const int k = wc.near[c];
-      const double dist = cand_dist[e], overlap = p.radius[a] - dist;
+      const double dist = W.dist[e], overlap = p.radius[a] - dist;
       const bool touch = !(overlap <= 0.0);  // NaN: touching, as touch_wall
-      if (!touch && wc.touching[c]) std::fill_n(wc.history.data() + c * std::size_t{Law::history_size}, Law::history_size, 0.0);
+      double* spring = wc.history.data() + c * std::size_t{Law::history_size};
+      if (!touch && wc.touching[c]) std::fill_n(spring, Law::history_size, 0.0);
       wc.touching[c] = touch;
       if (!touch) continue;
-      const Vec3 n_to_wall{cand_nx[e], cand_ny[e], cand_nz[e]};
+      const Vec3 n_to_wall{W.nx[e], W.ny[e], W.nz[e]};
       const double r_arm = std::max(dist, 0.0);
       Vec3 v_rel = ws.vel[k] - p.v[a];
       v_rel -= cross(p.omega[a], n_to_wall * r_arm);
@@ -357,8 +363,8 @@ inline void wall_forces_block(const std::vector<typename Law::Params>& table,
   };
   const auto visit = [&](std::size_t a) {
     for (std::uint32_t c = wc.start[a]; c < wc.start[a + 1]; ++c) {
-      cand_a[nc] = static_cast<std::uint32_t>(a), cand_c[nc] = c;
-      if (++nc == kCands) stage();
+      W.a[nc] = static_cast<std::uint32_t>(a), W.c[nc] = c;
+      if (++nc == WallCandidates::kCands) stage();
     }
   };
   // A block of consecutive particles (one thread, or a run of a thread's slab): only its listed ones, in the
