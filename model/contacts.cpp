@@ -226,10 +226,20 @@ void pair_pass(const std::vector<typename Law::Params>& table, const std::vector
     }
   }
   if (part) {
+    // Segment by segment, in list order (each particle's sum still runs in ascending pair order): a run's
+    // pairs as one thread's list, by pair index; the rest through the entries.
     const auto& ks = L.mine[thread];
-    const long n = static_cast<long>(ks.size());
-    for (long q = 0; q < n; q += kChunk)
-      pair_chunk<Law, Roll, true>(table, rolling, ctx, p, L, ks.data(), q, std::min(n, q + kChunk), thread, parity);
+    for (const PairList::Segment& seg : L.segments[thread]) {
+      if (seg.run) {
+        const long k0 = ks[seg.q0], k1 = k0 + (seg.q1 - seg.q0);
+        for (long k = k0; k < k1; k += kChunk)
+          pair_chunk<Law, Roll, false>(table, rolling, ctx, p, L, nullptr, k, std::min(k1, k + kChunk), 0, 0);
+        continue;
+      }
+      for (long q = seg.q0; q < seg.q1; q += kChunk)
+        pair_chunk<Law, Roll, true>(table, rolling, ctx, p, L, ks.data(), q, std::min<long>(seg.q1, q + kChunk),
+                                    thread, parity);
+    }
   } else {
     const long n = static_cast<long>(L.size());
     for (long q = 0; q < n; q += kChunk)

@@ -13,6 +13,29 @@ namespace pastemix::model {
 
 namespace {
 
+// The segments of a thread's pair list (PairList::Segment): runs of at least kMinRun consecutive pair
+// indices without kCrossBit, and the stretches between them.
+void cut_segments(const std::vector<std::uint32_t>& ks, std::vector<PairList::Segment>& segs) {
+  segs.clear();
+  const auto n = static_cast<std::uint32_t>(ks.size());
+  std::uint32_t rest = 0;  // where the stretch not yet in a segment begins
+  for (std::uint32_t q = 0; q < n;) {
+    if ((ks[q] & PairList::kCrossBit) != 0) {
+      ++q;
+      continue;
+    }
+    std::uint32_t e = q + 1;
+    while (e < n && ks[e] == ks[e - 1] + 1) ++e;  // a cross entry has the top bit: never the next index
+    if (e - q >= PairList::kMinRun) {
+      if (rest < q) segs.push_back({rest, q, false});
+      segs.push_back({q, e, true});
+      rest = e;
+    }
+    q = e;
+  }
+  if (rest < n) segs.push_back({rest, n, false});
+}
+
 // The cumulated shares: thread t's slab ends where the cumulated cost reaches total x upto[t + 1].
 std::vector<double> cumulated_shares(int n_threads, const std::vector<double>* share) {
   const auto nt = static_cast<std::size_t>(n_threads);
@@ -96,6 +119,7 @@ void PairList::partition(int n_threads, const std::vector<Vec3>& x, const std::v
     owner.assign(np, 0);
     for (auto& list : own) list.clear();
     for (auto& list : mine) list.clear();
+    segments.assign(nt, {});
     return;
   }
   if (n >= kCrossBit) throw std::length_error("pair list too long for the threads' pair lists (2^31 pairs)");
@@ -165,6 +189,8 @@ void PairList::partition(int n_threads, const std::vector<Vec3>& x, const std::v
     C[k] = static_cast<std::uint32_t>(c);
     cross_pairs[c++] = static_cast<std::uint32_t>(k);
   }
+  segments.resize(nt);
+  for (std::size_t t = 0; t < nt; ++t) cut_segments(mine[t], segments[t]);
   // Ghosts: every particle of a cross pair.
   ghost_of.assign(np, kNone);
   for (std::uint32_t k : cross_pairs)

@@ -127,3 +127,61 @@ TEST_CASE("contacts: the threads' lists hold every pair where it is needed, once
       CHECK(listed == p.size());
     }
 }
+
+// The segments of each thread's list (PairList::Segment) cover it in order, without gaps; a run is at least
+// kMinRun consecutive pair indices without a cross pair; no run of kMinRun such entries is left inside a
+// stretch that is not a run. With index slabs over a cloud in spatial order most of a list is runs.
+TEST_CASE("contacts: a thread's list is cut into runs of consecutive own pairs and the stretches between") {
+  // The cloud of cloud_list, its particles in order along the 10 cm side (as after the World's spatial sort,
+  // whose slowest axis the index slabs cut across).
+  Particles p;
+  {
+    Rng rng(7);
+    std::vector<Vec3> x(3000);
+    for (Vec3& q : x) q = {rng.uniform(0, 0.1), rng.uniform(0, 0.03), rng.uniform(0, 0.02)};
+    std::sort(x.begin(), x.end(), [](const Vec3& a, const Vec3& b) { return a.x < b.x; });
+    for (const Vec3& q : x) p.add(0, 1e-3, 2760, q, {}, {});
+  }
+  CandidatePairs c = build_pairs(p.x, p.radius, 5e-4);
+  PairList L;
+  L.rebuild(c, p, 1, 1);
+  const auto longest_run = [](const std::vector<std::uint32_t>& ks, std::uint32_t q0, std::uint32_t q1) {
+    std::uint32_t best = 0, len = 0;
+    for (std::uint32_t q = q0; q < q1; ++q) {
+      const bool plain = (ks[q] & PairList::kCrossBit) == 0;
+      len = plain && len > 0 && ks[q] == ks[q - 1] + 1 ? len + 1 : (plain ? 1 : 0);
+      best = std::max(best, len);
+    }
+    return best;
+  };
+  for (PairList::Slabs slabs : {PairList::Slabs::space, PairList::Slabs::index})
+    for (int threads : {2, 3}) {
+      CAPTURE(threads);
+      L.slabs = slabs;
+      L.partition(threads, p.x);
+      REQUIRE(L.segments.size() == static_cast<std::size_t>(threads));
+      std::size_t in_runs = 0, total = 0;
+      for (int t = 0; t < threads; ++t) {
+        CAPTURE(t);
+        const auto& ks = L.mine[static_cast<std::size_t>(t)];
+        std::uint32_t at = 0;
+        for (const PairList::Segment& s : L.segments[static_cast<std::size_t>(t)]) {
+          CHECK(s.q0 == at);
+          CHECK(s.q1 > s.q0);
+          at = s.q1;
+          if (s.run) {
+            CHECK(s.q1 - s.q0 >= PairList::kMinRun);
+            CHECK(longest_run(ks, s.q0, s.q1) == s.q1 - s.q0);
+            in_runs += s.q1 - s.q0;
+          } else {
+            CHECK(longest_run(ks, s.q0, s.q1) < PairList::kMinRun);
+          }
+        }
+        CHECK(at == ks.size());
+        total += ks.size();
+      }
+      MESSAGE((slabs == PairList::Slabs::index ? "index" : "space") << " slabs, " << threads << " threads: "
+                                                                     << in_runs << " of " << total << " entries in runs");
+      if (slabs == PairList::Slabs::index) CHECK(in_runs > total / 2);
+    }
+}
