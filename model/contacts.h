@@ -209,6 +209,15 @@ struct WallState {
   void update(const std::vector<Wall>& walls, double t);
 };
 
+// Candidate c's touching flag from its overlap (m); a candidate that stops touching forgets its spring (a new
+// contact starts from zero). NaN counts as touching (the force then shows it). Returns the flag.
+inline bool mark_wall_touch(WallContacts& wc, std::uint32_t c, double overlap) {
+  const bool touch = !(overlap <= 0.0);
+  if (!touch && wc.touching[c]) std::fill_n(wc.history.data() + c * static_cast<std::size_t>(wc.width), wc.width, 0.0);
+  wc.touching[c] = touch;
+  return touch;
+}
+
 // Particle a against its wall candidate c: the distance from its centre to the wall's surface (m), the unit
 // vector towards the wall and the overlap (m); sets the candidate's touching flag, and a candidate that does
 // not touch forgets its spring (a new contact starts from zero). Both wall passes below.
@@ -219,10 +228,7 @@ inline bool touch_wall(const std::vector<Wall>& walls, const WallState& ws, cons
          : ws.rect[k]  ? rectangle_distance(walls[k], ws.origin[k], p.x[a], &n_to_wall)
                        : wall_distance(walls[k], ws.shift[k], p.x[a], &n_to_wall);
   overlap = p.radius[a] - dist;
-  const bool touch = !(overlap <= 0.0);  // NaN: touching, as before (the force then shows it)
-  if (!touch && wc.touching[c]) std::fill_n(wc.history.data() + c * static_cast<std::size_t>(wc.width), wc.width, 0.0);
-  wc.touching[c] = touch;
-  return touch;
+  return mark_wall_touch(wc, c, overlap);
 }
 
 // A block's wall candidates (particle a[e], candidate c[e]) and, after measure(), each one's distance (m) and
@@ -352,11 +358,7 @@ inline void wall_forces_block(const std::vector<typename Law::Params>& table,
       const std::uint32_t c = W.c[e];
       const int k = wc.near[c];
       const double dist = W.dist[e], overlap = p.radius[a] - dist;
-      const bool touch = !(overlap <= 0.0);  // NaN: touching, as touch_wall
-      double* spring = wc.history.data() + c * std::size_t{Law::history_size};
-      if (!touch && wc.touching[c]) std::fill_n(spring, Law::history_size, 0.0);
-      wc.touching[c] = touch;
-      if (!touch) continue;
+      if (!mark_wall_touch(wc, c, overlap)) continue;
       const Vec3 n_to_wall{W.nx[e], W.ny[e], W.nz[e]};
       const double r_arm = std::max(dist, 0.0);
       Vec3 v_rel = ws.vel[k] - p.v[a];

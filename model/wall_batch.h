@@ -64,8 +64,8 @@ inline void revolution_distances(RevolutionLanes& b, int n) {
   _mm512_store_pd(b.ny, _mm512_maskz_div_pd(apart, _mm512_mul_pd(uy, er), len));
   _mm512_store_pd(b.nz, _mm512_mask_div_pd(_mm512_set1_pd(-1.0), apart, ez, len));
 #else
+  Wall w;
   for (int l = 0; l < n; ++l) {
-    Wall w;
     w.r0 = b.r0[l], w.z0 = b.z0[l], w.r1 = b.r1[l], w.z1 = b.z1[l];
     Vec3 nv;
     b.dist[l] = revolution_distance(w, {b.ox[l], b.oy[l], b.oz[l]}, {b.px[l], b.py[l], b.pz[l]}, &nv);
