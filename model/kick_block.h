@@ -4,7 +4,8 @@
 // velocity kicks, spin inputs, drift, domain check and displacement since the last build at a time (velocity8,
 // spins8, drift8): their Vec3 arrays loaded as three registers and transposed (model/simd_vec3.h), not one sphere's
 // x, y, z at a time. One sphere at a time this was ~20 % of the bench pour's samples on one thread (perf).
-// The arithmetic per component and its order are the scalar code's (World::kick_velocity_twice, drift_one,
+// With AVX2 alone (no AVX-512: AMD Zen 2-3, Intel client cores), the same four at a time (velocity4, spins4,
+// drift4; session 38). The arithmetic per component and its order are the scalar code's (World::kick_velocity_twice, drift_one,
 // Lane::add_moves), so the bits are the same (scripts/bitwise_check.sh, tests/model/kick_block_test.cpp).
 #pragma once
 
@@ -13,6 +14,7 @@
 #include <cstdint>
 
 #include "model/particles.h"
+#include "model/simd_avx2.h"
 #include "model/simd_vec3.h"
 
 namespace pastemix::model::kick {
@@ -64,6 +66,7 @@ inline void spin_free(SpinBlock& b, int m) {
 
 #if defined(__AVX512F__)
 constexpr bool kEight = true;
+constexpr int kLanes = 8;
 
 // Particles a0 .. a0 + 7 (none kicked by a kick pass): v += dv twice with dv = (f / m + g) h (World::
 // kick_velocity_twice).
@@ -146,8 +149,86 @@ inline void drift8(Particles& p, const Vec3* x_build, const SpinBlock& b, int e,
   _mm512_storeu_pd(moves.b2 + e, norm2(_mm512_sub_pd(d.x, _mm512_set1_pd(moves.u.x)), _mm512_sub_pd(d.y, _mm512_set1_pd(moves.u.y)),
                                        _mm512_sub_pd(d.z, _mm512_set1_pd(moves.u.z))));
 }
+#elif defined(PASTEMIX_AVX2_LANES)
+constexpr bool kEight = false;
+constexpr int kLanes = 4;
+
+// velocity8, spins8, Moves and drift8 with four lanes (AVX2, model/simd_avx2.h): the same operations.
+inline void velocity4(Particles& p, const Vec3& g, double h, long a0) {
+  using namespace avx2;
+  const __m256d hv = _mm256_set1_pd(h);
+  const Aos4 im = spread(_mm256_loadu_pd(&p.inv_mass[a0])), f = load_aos4(&p.f[a0].x), G = repeat(g.x, g.y, g.z);
+  const Aos4 v = load_aos4(&p.v[a0].x);
+  const auto twice = [&](__m256d vv, __m256d ff, __m256d m, __m256d gg) {
+    const __m256d dv = _mm256_mul_pd(_mm256_add_pd(_mm256_mul_pd(ff, m), gg), hv);
+    return _mm256_add_pd(_mm256_add_pd(vv, dv), dv);
+  };
+  store_aos4(&p.v[a0].x, {twice(v.f0, f.f0, im.f0, G.f0), twice(v.f1, f.f1, im.f1, G.f1), twice(v.f2, f.f2, im.f2, G.f2)});
+}
+
+inline void spins4(const Particles& p, double h, SpinBlock& b, int e, long a0) {
+  using namespace avx2;
+  const __m256d hv = _mm256_set1_pd(h);
+  const __m256d ii = _mm256_loadu_pd(&p.inv_inertia[a0]), cap = _mm256_loadu_pd(&p.rolling_capacity[a0]);
+  const __m256d k = _mm256_mul_pd(hv, ii);  // h / I
+  const Soa4 t = to_soa(load_aos4(&p.torque[a0].x)), w = to_soa(load_aos4(&p.omega[a0].x));
+  _mm256_storeu_pd(b.wx + e, w.x), _mm256_storeu_pd(b.wy + e, w.y), _mm256_storeu_pd(b.wz + e, w.z);
+  _mm256_storeu_pd(b.dx + e, _mm256_mul_pd(t.x, k));
+  _mm256_storeu_pd(b.dy + e, _mm256_mul_pd(t.y, k));
+  _mm256_storeu_pd(b.dz + e, _mm256_mul_pd(t.z, k));
+  _mm256_storeu_pd(b.stop + e, _mm256_mul_pd(_mm256_mul_pd(hv, cap), ii));
+  _mm256_storeu_pd(b.cap + e, cap);
+}
+
+struct Moves {
+  bool refine = false;
+  Vec3 u;
+  double* a2 = nullptr;
+  double* b2 = nullptr;
+  __m256d amax = _mm256_setzero_pd();
+  double largest() const {
+    alignas(32) double l[4];
+    _mm256_store_pd(l, amax);
+    return *std::max_element(l, l + 4);
+  }
+};
+
+inline void drift4(Particles& p, const Vec3* x_build, const SpinBlock& b, int e, long a0, double dt, const Vec3& lo,
+                   const Vec3& hi, long& first_bad, Moves& moves) {
+  using namespace avx2;
+  store_aos4(&p.omega[a0].x, to_aos({_mm256_loadu_pd(b.wx + e), _mm256_loadu_pd(b.wy + e), _mm256_loadu_pd(b.wz + e)}));
+  const __m256d dtv = _mm256_set1_pd(dt);
+  const Aos4 v = load_aos4(&p.v[a0].x), x0 = load_aos4(&p.x[a0].x);
+  const Aos4 x{_mm256_add_pd(x0.f0, _mm256_mul_pd(v.f0, dtv)), _mm256_add_pd(x0.f1, _mm256_mul_pd(v.f1, dtv)),
+               _mm256_add_pd(x0.f2, _mm256_mul_pd(v.f2, dtv))};
+  store_aos4(&p.x[a0].x, x);
+  const Aos4 L = repeat(lo.x, lo.y, lo.z), H = repeat(hi.x, hi.y, hi.z);
+  const auto inside = [](__m256d c, __m256d l, __m256d u) {
+    return _mm256_and_pd(_mm256_cmp_pd(c, l, _CMP_GE_OQ), _mm256_cmp_pd(c, u, _CMP_LE_OQ));
+  };
+  const __m256d in = _mm256_and_pd(_mm256_and_pd(inside(x.f0, L.f0, H.f0), inside(x.f1, L.f1, H.f1)),
+                                   inside(x.f2, L.f2, H.f2));
+  if (_mm256_movemask_pd(in) != 0xf)
+    for (long a = a0; a < a0 + 4; ++a) {
+      const Vec3& q = p.x[a];
+      if (!(q.x >= lo.x && q.x <= hi.x && q.y >= lo.y && q.y <= hi.y && q.z >= lo.z && q.z <= hi.z))
+        first_bad = std::min(first_bad, a);
+    }
+  const Aos4 r = load_aos4(&x_build[a0].x);
+  const Soa4 d = to_soa({_mm256_sub_pd(x.f0, r.f0), _mm256_sub_pd(x.f1, r.f1), _mm256_sub_pd(x.f2, r.f2)});
+  const __m256d a2 = avx2::norm2(d.x, d.y, d.z);
+  if (!moves.refine) {
+    moves.amax = _mm256_max_pd(a2, moves.amax);  // NaN in a2: the second operand
+    return;
+  }
+  _mm256_storeu_pd(moves.a2 + e, a2);
+  _mm256_storeu_pd(moves.b2 + e, avx2::norm2(_mm256_sub_pd(d.x, _mm256_set1_pd(moves.u.x)),
+                                             _mm256_sub_pd(d.y, _mm256_set1_pd(moves.u.y)),
+                                             _mm256_sub_pd(d.z, _mm256_set1_pd(moves.u.z))));
+}
 #else
 constexpr bool kEight = false;
+constexpr int kLanes = 0;
 #endif
 
 }  // namespace pastemix::model::kick

@@ -16,6 +16,7 @@
 #include <cstdint>
 
 #include "model/contacts.h"
+#include "model/simd_avx2.h"
 
 #if defined(__AVX512F__) && defined(__AVX512VL__)
 #include <immintrin.h>
@@ -90,6 +91,32 @@ struct Ghosts {
     rows8(at, x, y, z);
   }
 };
+#elif defined(PASTEMIX_AVX2_LANES)
+// Ghosts for a group of four pairs (AVX2): as Ghosts above, four lanes.
+struct Ghosts4 {
+  static_assert(sizeof(PairList::Ghost) == 9 * sizeof(double));
+  const double* G;
+  unsigned cm;
+  const std::uint32_t *a, *b;
+  std::uint32_t ga[4], gb[4];
+  Ghosts4(const PairList& L, int cur, unsigned cross_lanes, const std::uint32_t* a4, const std::uint32_t* b4)
+      : G(reinterpret_cast<const double*>(L.ghost[cur].data())), cm(cross_lanes), a(a4), b(b4) {
+    for (int l = 0; l < 4; ++l) {
+      const bool cross = (cm >> l) & 1u;
+      ga[l] = cross ? 9 * L.ghost_of[a[l]] : 0;
+      gb[l] = cross ? 9 * L.ghost_of[b[l]] : 0;
+    }
+  }
+  [[gnu::always_inline]] void rows(bool of_j, const double* base, int off, __m256d& x, __m256d& y,
+                                   __m256d& z) const {
+    const std::uint32_t* id = of_j ? b : a;
+    const std::uint32_t* g = of_j ? gb : ga;
+    const auto at = [&](int l) __attribute__((always_inline)) {
+      return ((cm >> l) & 1u) ? G + g[l] + off : base + 3 * static_cast<std::size_t>(id[l]);
+    };
+    avx2::rows4(at, x, y, z);
+  }
+};
 #endif
 
 // The separation vectors x_j - x_i (m) of a chunk's touching candidates, one array per axis (not
@@ -160,7 +187,6 @@ struct PairFilter {
     }
   }
 
-#if defined(__AVX512F__) && defined(__AVX512VL__)
   // The touching flags and springs of a group's cross pairs (lanes cm; pair k, first particle a), as one()
   // sets them: by the owner of i only.
   void cross_flags(unsigned cm, unsigned touch, const std::uint32_t* k8, const std::uint32_t* a8) const {
@@ -171,6 +197,91 @@ struct PairFilter {
       const std::uint32_t t = (touch >> l) & 1u;
       if (t == 0) std::fill_n(&L.cross_hist[cur ^ 1][L.cross[k8[l]] * ws], L.width, 0.0);
       L.touching[k8[l]] = t;
+    }
+  }
+
+#if defined(PASTEMIX_AVX2_LANES)
+  // Candidates q .. q + 3 into o (AVX2, four lanes): run()'s AVX-512 group of eight with four lanes, the
+  // compress by a table (simd_avx2.h). The same values, entries and flags in the same order as one().
+  template <long N>
+  [[gnu::always_inline]] void group4(long q, const double* X, FilterOut<N>& o) const {
+    __m128i e, k, a, b;
+    __m256d rsum;
+    unsigned cm = 0;  // the cross pairs' lanes
+    std::uint32_t k0 = static_cast<std::uint32_t>(q);
+    alignas(16) std::uint32_t k4[4], a4[4], b4[4];
+    const std::uint32_t *ia = nullptr, *ib = nullptr;
+    bool consecutive = true;  // pairs k0 .. k0 + 3, none crossing
+    if constexpr (Part) {
+      e = _mm_loadu_si128(reinterpret_cast<const __m128i*>(ks + q));
+      cm = static_cast<unsigned>(_mm_movemask_ps(_mm_castsi128_ps(e)));  // kCrossBit is the sign bit
+      k = _mm_and_si128(e, _mm_set1_epi32(static_cast<int>(~PairList::kCrossBit)));
+      k0 = static_cast<std::uint32_t>(_mm_cvtsi128_si32(e));
+      consecutive = cm == 0 && static_cast<std::uint32_t>(_mm_extract_epi32(e, 3)) == k0 + 3;
+      if (consecutive) {
+        ia = L.i.data() + k0, ib = L.j.data() + k0;
+        rsum = _mm256_loadu_pd(L.rsum.data() + k0);
+      } else {
+        _mm_store_si128(reinterpret_cast<__m128i*>(k4), k);
+        for (int l = 0; l < 4; ++l) a4[l] = L.i[k4[l]], b4[l] = L.j[k4[l]];
+        ia = a4, ib = b4;
+        rsum = avx2::load4_pd(L.rsum.data(), k4);
+      }
+    } else {
+      e = k = _mm_add_epi32(_mm_set1_epi32(static_cast<int>(q)), _mm_setr_epi32(0, 1, 2, 3));
+      ia = L.i.data() + q, ib = L.j.data() + q;
+      rsum = _mm256_loadu_pd(L.rsum.data() + q);
+    }
+    a = _mm_loadu_si128(reinterpret_cast<const __m128i*>(ia));
+    b = _mm_loadu_si128(reinterpret_cast<const __m128i*>(ib));
+    __m256d xa, ya, za, xb, yb, zb;
+    if (cm == 0) {
+      avx2::load_rows4(X, ia, xa, ya, za);
+      avx2::load_rows4(X, ib, xb, yb, zb);
+    } else {
+      const Ghosts4 g{L, cur, cm, ia, ib};
+      g.rows(false, X, 0, xa, ya, za);
+      g.rows(true, X, 0, xb, yb, zb);
+    }
+    const __m256d dx = _mm256_sub_pd(xb, xa), dy = _mm256_sub_pd(yb, ya), dz = _mm256_sub_pd(zb, za);
+    const __m256d dist2 = avx2::norm2(dx, dy, dz);
+    // touch = !(dist2 >= rsum^2), true for NaN as the scalar form.
+    const unsigned touch =
+        static_cast<unsigned>(_mm256_movemask_pd(_mm256_cmp_pd(dist2, _mm256_mul_pd(rsum, rsum), _CMP_NGE_UQ)));
+    const long m = o.m;  // (m + 4 <= N: at most q - q0 pairs kept so far)
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(o.idx + m), avx2::compress_epi32(touch, e));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(o.ia + m), avx2::compress_epi32(touch, a));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(o.ib + m), avx2::compress_epi32(touch, b));
+    _mm256_storeu_pd(o.sep.x + m, avx2::compress_pd(touch, dx));
+    _mm256_storeu_pd(o.sep.y + m, avx2::compress_pd(touch, dy));
+    _mm256_storeu_pd(o.sep.z + m, avx2::compress_pd(touch, dz));
+    _mm256_storeu_pd(o.sep2 + m, avx2::compress_pd(touch, dist2));
+    _mm256_storeu_pd(o.rsums + m, avx2::compress_pd(touch, rsum));
+    o.m = m + __builtin_popcount(touch);
+    unsigned was = 0;  // the lanes that were touching
+    std::uint32_t* T = L.touching.data();
+    if (consecutive) {
+      const __m128i now =
+          _mm_and_si128(_mm_srlv_epi32(_mm_set1_epi32(static_cast<int>(touch)), _mm_setr_epi32(0, 1, 2, 3)),
+                        _mm_set1_epi32(1));
+      const __m128i w = _mm_loadu_si128(reinterpret_cast<const __m128i*>(T + k0));
+      was = ~static_cast<unsigned>(_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(w, _mm_setzero_si128())))) & 0xfu;
+      _mm_storeu_si128(reinterpret_cast<__m128i*>(T + k0), now);
+    } else {
+      for (unsigned here = ~cm & 0xfu; here != 0; here &= here - 1) {
+        const int l = __builtin_ctz(here);
+        was |= static_cast<unsigned>(T[k4[l]] != 0) << l;
+        T[k4[l]] = (touch >> l) & 1u;
+      }
+    }
+    if (cm != 0) cross_flags(cm, touch, k4, ia);
+    const unsigned opened = was & ~touch & ~cm & 0xfu;
+    if (opened != 0) {
+      alignas(16) std::uint32_t ks4[4];
+      _mm_store_si128(reinterpret_cast<__m128i*>(ks4), k);
+      const std::size_t ws = static_cast<std::size_t>(L.width);
+      for (int l = 0; l < 4; ++l)
+        if ((opened >> l) & 1u) std::fill_n(&L.history[ks4[l] * ws], L.width, 0.0);
     }
   }
 #endif
@@ -287,18 +398,72 @@ struct PairFilter {
           if ((opened >> l) & 1u) std::fill_n(&L.history[ks8[l] * ws], L.width, 0.0);
       }
     }
+#elif defined(PASTEMIX_AVX2_LANES)
+    const double* X = p.x.empty() ? nullptr : &p.x[0].x;
+    for (; q + 4 <= q1; q += 4) group4(q, X, o);
 #endif
     scalar(q, q1, o);
   }
 };
+
+#if defined(PASTEMIX_AVX2_LANES)
+// stage8's four-lane form (AVX2): pairs q .. q + 3 into lanes l0 .. l0 + 3, the same values.
+template <class Batch, long N>
+[[gnu::always_inline]] inline void stage4(Batch& B, int l0, const std::uint32_t* e4, const std::uint32_t* a4,
+                                          const std::uint32_t* b4, const Separations<N>& sep, const double* sep2,
+                                          const double* rsums, long q, const Particles& p, const PairList& L,
+                                          int cur) {
+  const __m128i e = _mm_loadu_si128(reinterpret_cast<const __m128i*>(e4));
+  const unsigned cm = static_cast<unsigned>(_mm_movemask_ps(_mm_castsi128_ps(e)));  // kCrossBit: sign bit
+  _mm256_storeu_pd(B.dx + l0, _mm256_loadu_pd(sep.x + q));
+  _mm256_storeu_pd(B.dy + l0, _mm256_loadu_pd(sep.y + q));
+  _mm256_storeu_pd(B.dz + l0, _mm256_loadu_pd(sep.z + q));
+  _mm256_storeu_pd(B.dist2 + l0, _mm256_loadu_pd(sep2 + q));
+  _mm256_storeu_pd(B.rsum + l0, _mm256_loadu_pd(rsums + q));
+  _mm256_storeu_pd(B.ra + l0, avx2::load4_pd(p.radius.data(), a4));
+  _mm256_storeu_pd(B.rb + l0, avx2::load4_pd(p.radius.data(), b4));
+  const double* V = &p.v[0].x;
+  const double* W = &p.omega[0].x;
+  const double* H = L.history.data();
+  const auto store = [&](double* x, double* y, double* z, const __m256d& rx, const __m256d& ry, const __m256d& rz) {
+    _mm256_storeu_pd(x + l0, rx), _mm256_storeu_pd(y + l0, ry), _mm256_storeu_pd(z + l0, rz);
+  };
+  __m256d rx, ry, rz;
+  if (cm == 0) {
+    _mm256_storeu_pd(B.r_star + l0, avx2::load4_pd(L.r_star.data(), e4));
+    _mm256_storeu_pd(B.m_star + l0, avx2::load4_pd(L.m_star.data(), e4));
+    avx2::load_rows4(V, a4, rx, ry, rz), store(B.vax, B.vay, B.vaz, rx, ry, rz);
+    avx2::load_rows4(V, b4, rx, ry, rz), store(B.vbx, B.vby, B.vbz, rx, ry, rz);
+    avx2::load_rows4(W, a4, rx, ry, rz), store(B.wax, B.way, B.waz, rx, ry, rz);
+    avx2::load_rows4(W, b4, rx, ry, rz), store(B.wbx, B.wby, B.wbz, rx, ry, rz);
+    avx2::load_rows4(H, e4, rx, ry, rz), store(B.hx, B.hy, B.hz, rx, ry, rz);
+    return;
+  }
+  alignas(16) std::uint32_t k4[4];  // the pair indices
+  _mm_store_si128(reinterpret_cast<__m128i*>(k4), _mm_and_si128(e, _mm_set1_epi32(static_cast<int>(~PairList::kCrossBit))));
+  _mm256_storeu_pd(B.r_star + l0, avx2::load4_pd(L.r_star.data(), k4));
+  _mm256_storeu_pd(B.m_star + l0, avx2::load4_pd(L.m_star.data(), k4));
+  const Ghosts4 g{L, cur, cm, a4, b4};
+  g.rows(false, V, 3, rx, ry, rz), store(B.vax, B.vay, B.vaz, rx, ry, rz);
+  g.rows(true, V, 3, rx, ry, rz), store(B.vbx, B.vby, B.vbz, rx, ry, rz);
+  g.rows(false, W, 6, rx, ry, rz), store(B.wax, B.way, B.waz, rx, ry, rz);
+  g.rows(true, W, 6, rx, ry, rz), store(B.wbx, B.wby, B.wbz, rx, ry, rz);
+  const double* CH = L.cross_hist[cur].data();
+  const auto spring = [&](int l) __attribute__((always_inline)) {
+    const std::size_t kk = k4[l];
+    return ((cm >> l) & 1u) ? CH + 3 * static_cast<std::size_t>(L.cross[kk]) : H + 3 * kk;
+  };
+  avx2::rows4(spring, rx, ry, rz), store(B.hx, B.hy, B.hz, rx, ry, rz);
+}
+#endif
 
 // The pair pass's staging of eight touching pairs (entries e8[0 .. 8), chunk positions q .. q + 7 of the
 // filter's arrays) into lanes l0 .. l0 + 7 of a batch kernel's input B (a Law::Batch with HertzMindlin's
 // fields; a8, b8: the pairs' particles, as the filter kept them): separations, radii, R*, m*, both velocities and
 // spins, the spring. Gathers, one store per field instead of eight. A cross pair (a thread's part, buffer
 // `cur`) takes both particles' velocities and spins from their ghost copies and its spring from cross_hist[cur],
-// as the one-at-a-time staging does. False (nothing staged) where the build has no AVX-512: the caller stages
-// them one at a time.
+// as the one-at-a-time staging does. With AVX2 alone, two groups of four (stage4). False (nothing staged)
+// where the build has neither: the caller stages them one at a time.
 template <class Batch, long N>
 bool stage8(Batch& B, int l0, const std::uint32_t* e8, const std::uint32_t* a8, const std::uint32_t* b8,
             const Separations<N>& sep, const double* sep2, const double* rsums, long q, const Particles& p,
@@ -348,6 +513,10 @@ bool stage8(Batch& B, int l0, const std::uint32_t* e8, const std::uint32_t* a8, 
     return ((cm >> l) & 1u) ? CH + 3 * static_cast<std::size_t>(L.cross[k]) : H + 3 * k;
   };
   rows8(spring, rx, ry, rz), store(B.hx, B.hy, B.hz, rx, ry, rz);
+  return true;
+#elif defined(PASTEMIX_AVX2_LANES)
+  stage4(B, l0, e8, a8, b8, sep, sep2, rsums, q, p, L, cur);
+  stage4(B, l0 + 4, e8 + 4, a8 + 4, b8 + 4, sep, sep2, rsums, q + 4, p, L, cur);
   return true;
 #else
   (void)B, (void)l0, (void)e8, (void)a8, (void)b8, (void)sep, (void)sep2, (void)rsums, (void)q, (void)p, (void)L,

@@ -293,13 +293,14 @@ void World::close_kicks_blocked(const PassStep<Law, Roll>& s, Lane& lane, double
   double a2max = lane.a2max;
   const Vec3 u = lane.u;
   alignas(64) double a2[kBlock], b2[kBlock];
-#if defined(__AVX512F__)
+#if defined(__AVX512F__) || defined(PASTEMIX_AVX2_LANES)
   kick::Moves moves{lane.refine, u, a2, b2};
-#endif
-  // Eight particles at a time (model/kick_block.h) where the block has eight consecutive indices: one thread
-  // owns every particle, or a thread's slab after the spatial sort.
-  const auto eight = [&](int e, int m) { return kick::kEight && e + 8 <= m && idx[e + 7] == idx[e] + 7; };
+  // Eight particles at a time (four with AVX2 alone; model/kick_block.h) where the block has that many
+  // consecutive indices: one thread owns every particle, or a thread's slab after the spatial sort.
+  constexpr int W = kick::kLanes;
+  const auto full = [&](int e, int m) { return e + W <= m && idx[e + W - 1] == idx[e] + W - 1; };
   const auto claimed_by_pass = [&](long a) { return with_kick_pass(forces_, a, [](const auto&) {}); };
+#endif
   for (long q = 0; q < lane.n_own;) {
     int m = 0;
     for (; q < lane.n_own && m < kBlock; ++q) idx[m++] = lane.particle(q);
@@ -310,13 +311,23 @@ void World::close_kicks_blocked(const PassStep<Law, Roll>& s, Lane& lane, double
     add_force_passes(s, idx, m);
     for (int e = 0; e < m;) {
 #if defined(__AVX512F__)
-      if (eight(e, m)) {
+      if (full(e, m)) {
         if (std::none_of(idx + e, idx + e + 8, claimed_by_pass))
           kick::velocity8(p_, accel_, h, idx[e]);
         else if (!kick8_by_pass(idx[e], h))
           for (int l = e; l < e + 8; ++l) kick_claimed_twice(idx[l], h);
         kick::spins8(p_, h, b, e, idx[e]);
         e += 8;
+        continue;
+      }
+#elif defined(PASTEMIX_AVX2_LANES)
+      if (full(e, m)) {  // (the fluid's lanes one at a time: its kick8 forms are AVX-512 only)
+        if (std::none_of(idx + e, idx + e + 4, claimed_by_pass))
+          kick::velocity4(p_, accel_, h, idx[e]);
+        else
+          for (int l = e; l < e + 4; ++l) kick_claimed_twice(idx[l], h);
+        kick::spins4(p_, h, b, e, idx[e]);
+        e += 4;
         continue;
       }
 #endif
@@ -338,11 +349,15 @@ void World::close_kicks_blocked(const PassStep<Law, Roll>& s, Lane& lane, double
     else
       kick::spin_free(b, m);
     for (int e = 0; e < m;) {
+#if defined(__AVX512F__) || defined(PASTEMIX_AVX2_LANES)
+      if (full(e, m)) {
 #if defined(__AVX512F__)
-      if (eight(e, m)) {
         kick::drift8(p_, x_at_rebuild_.data(), b, e, idx[e], cfg_.dt, cfg_.domain_min, cfg_.domain_max, bad, moves);
-        for (int l = e; l < e + 8; ++l) publish_ghost(lane, idx[l]);
-        e += 8;
+#else
+        kick::drift4(p_, x_at_rebuild_.data(), b, e, idx[e], cfg_.dt, cfg_.domain_min, cfg_.domain_max, bad, moves);
+#endif
+        for (int l = e; l < e + W; ++l) publish_ghost(lane, idx[l]);
+        e += W;
         continue;
       }
 #endif
@@ -358,7 +373,7 @@ void World::close_kicks_blocked(const PassStep<Law, Roll>& s, Lane& lane, double
     }
     if (lane.refine) lane.add_moves(a2, b2, m);
   }
-#if defined(__AVX512F__)
+#if defined(__AVX512F__) || defined(PASTEMIX_AVX2_LANES)
   if (!lane.refine) a2max = std::max(a2max, moves.largest());
 #endif
   lane.bad = bad, lane.a2max = a2max;

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// The blocked kick's eight-at-a-time forms (model/kick_block.h, model/simd_vec3.h): the transposes move every
+// The blocked kick's eight-at-a-time forms (model/kick_block.h, model/simd_vec3.h; four at a time with AVX2
+// alone, model/simd_avx2.h): the transposes move every
 // value unchanged, and velocity8, spins8 and drift8 give, bit for bit, what the one-sphere-at-a-time kick gives
 // (World::kick_velocity_twice, drift_one, the displacements' squares), with a stray and a NaN particle caught.
 #include "model/kick_block.h"
@@ -38,6 +39,46 @@ Particles random_particles(std::uint64_t seed, int n) {
 }  // namespace
 
 #if defined(__AVX512F__)
+constexpr int kW = 8;  // the blocked kick's lanes
+void velocity_w(Particles& p, const Vec3& g, double h, long a0) { kick::velocity8(p, g, h, a0); }
+void spins_w(const Particles& p, double h, kick::SpinBlock& b, int e, long a0) { kick::spins8(p, h, b, e, a0); }
+void drift_w(Particles& p, const Vec3* xb, const kick::SpinBlock& b, int e, long a0, double dt, const Vec3& lo,
+             const Vec3& hi, long& bad, kick::Moves& m) {
+  kick::drift8(p, xb, b, e, a0, dt, lo, hi, bad, m);
+}
+#elif defined(PASTEMIX_AVX2_LANES)
+constexpr int kW = 4;
+void velocity_w(Particles& p, const Vec3& g, double h, long a0) { kick::velocity4(p, g, h, a0); }
+void spins_w(const Particles& p, double h, kick::SpinBlock& b, int e, long a0) { kick::spins4(p, h, b, e, a0); }
+void drift_w(Particles& p, const Vec3* xb, const kick::SpinBlock& b, int e, long a0, double dt, const Vec3& lo,
+             const Vec3& hi, long& bad, kick::Moves& m) {
+  kick::drift4(p, xb, b, e, a0, dt, lo, hi, bad, m);
+}
+
+TEST_CASE("kick block: the four-lane transposes and layouts move every value unchanged") {
+  std::vector<Vec3> v(4), back(4);
+  for (int a = 0; a < 4; ++a) v[a] = {a + 0.125, -a - 0.25, 100.0 * a + 0.5};
+  const avx2::Soa4 s = avx2::to_soa(avx2::load_aos4(&v[0].x));
+  alignas(32) double x[4], y[4], z[4];
+  _mm256_store_pd(x, s.x), _mm256_store_pd(y, s.y), _mm256_store_pd(z, s.z);
+  for (int a = 0; a < 4; ++a) {
+    CHECK(x[a] == v[a].x);
+    CHECK(y[a] == v[a].y);
+    CHECK(z[a] == v[a].z);
+  }
+  avx2::store_aos4(&back[0].x, avx2::to_aos(s));
+  for (int a = 0; a < 4; ++a) CHECK(same_bits(back[a], v[a]));
+  std::vector<Vec3> spv(4), rpv(4);
+  avx2::store_aos4(&spv[0].x, avx2::spread(_mm256_setr_pd(0, 1, 2, 3)));
+  avx2::store_aos4(&rpv[0].x, avx2::repeat(1.5, 2.5, 3.5));
+  for (int a = 0; a < 4; ++a) {
+    CHECK(same_bits(spv[a], Vec3{double(a), double(a), double(a)}));
+    CHECK(same_bits(rpv[a], Vec3{1.5, 2.5, 3.5}));
+  }
+}
+#endif
+
+#if defined(__AVX512F__)
 TEST_CASE("kick block: the transposes and layouts move every value unchanged") {
   std::vector<Vec3> v(8), back(8);
   for (int a = 0; a < 8; ++a) v[a] = {a + 0.125, -a - 0.25, 100.0 * a + 0.5};
@@ -62,8 +103,11 @@ TEST_CASE("kick block: the transposes and layouts move every value unchanged") {
     CHECK(same_bits(rpv[a], Vec3{1.5, 2.5, 3.5}));
   }
 }
+#endif
 
-TEST_CASE("kick block: velocity8, spins8 and drift8 give the one-at-a-time kick's bits, strays and NaN caught") {
+#if defined(__AVX512F__) || defined(PASTEMIX_AVX2_LANES)
+
+TEST_CASE("kick block: the blocked lanes (velocity8/4, spins8/4, drift8/4) give the one-at-a-time kick's bits") {
   const Vec3 g{0.0, 0.0, -9.81}, lo{0.02, 0.02, 0.02}, hi{0.08, 0.08, 0.08};
   const double h = 4.5e-6, dt = 9e-6;
   for (bool refine : {false, true}) {
@@ -79,8 +123,8 @@ TEST_CASE("kick block: velocity8, spins8 and drift8 give the one-at-a-time kick'
     double a2[24] = {}, b2[24] = {};
     kick::Moves moves{refine, u, a2, b2};
     long bad = std::numeric_limits<long>::max();
-    for (int e = 0; e < 24; e += 8) kick::velocity8(p, g, h, e), kick::spins8(p, h, b, e, e);
-    for (int e = 0; e < 24; e += 8) kick::drift8(p, x_build.data(), b, e, e, dt, lo, hi, bad, moves);
+    for (int e = 0; e < 24; e += kW) velocity_w(p, g, h, e), spins_w(p, h, b, e, e);
+    for (int e = 0; e < 24; e += kW) drift_w(p, x_build.data(), b, e, e, dt, lo, hi, bad, moves);
     // The same, one sphere at a time, as world.cpp writes it.
     long bad_ref = std::numeric_limits<long>::max();
     double amax_ref = 0.0;
@@ -126,5 +170,5 @@ TEST_CASE("kick block: velocity8, spins8 and drift8 give the one-at-a-time kick'
   }
 }
 #else
-TEST_CASE("kick block: without AVX-512 the kick goes one sphere at a time") { CHECK_FALSE(kick::kEight); }
+TEST_CASE("kick block: without AVX2 the kick goes one sphere at a time") { CHECK(kick::kLanes == 0); }
 #endif

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// The pair pass's filter and staging (model/pair_filter.h): eight candidates at a time (AVX-512 builds) give
+// The pair pass's filter and staging (model/pair_filter.h): eight candidates at a time (AVX-512 builds; four
+// with AVX2 alone) give
 // the entries, separations, touching flags and zeroed springs that one candidate at a time gives, bit for bit,
 // for a single thread's list and for a thread's part with cross pairs; stage8 fills each lane with its pair's
 // state, a cross pair's from the ghost copies and the cross springs.
@@ -154,10 +155,10 @@ TEST_CASE("pair filter: stage8 puts each pair's state in its lane, a cross pair'
   PairFilter<false>{s.p, L, nullptr, 0, 0}.scalar(0, kN, o);
   REQUIRE(o.m >= 16);
   const bool staged = stage8(B, 8, o.idx + 3, o.ia + 3, o.ib + 3, o.sep, o.sep2, o.rsums, 3, s.p, L, 0);
-#if defined(__AVX512F__) && defined(__AVX512VL__)
+#if (defined(__AVX512F__) && defined(__AVX512VL__)) || defined(PASTEMIX_AVX2_LANES)
   REQUIRE(staged);
 #else
-  REQUIRE_FALSE(staged);  // no AVX-512: the pair pass stages one at a time
+  REQUIRE_FALSE(staged);  // neither AVX-512 nor AVX2: the pair pass stages one at a time
   return;
 #endif
   for (int l = 0; l < 8; ++l) {
@@ -247,6 +248,42 @@ TEST_CASE("pair filter: rows8 and load8_pd load what the rows hold, the array's 
     CHECK(gy[l] == rows[3 * id[l] + 1]);
     CHECK(gz[l] == rows[3 * id[l] + 2]);
     CHECK(g1[l] == one[id[l]]);
+  }
+}
+#endif
+
+#if defined(PASTEMIX_AVX2_LANES)
+TEST_CASE("pair filter: rows4, load4_pd and the compress tables move what they should, the last row included") {
+  const std::size_t n = 37;
+  std::vector<double> rows(3 * n), one(n);
+  for (std::size_t r = 0; r < 3 * n; ++r) rows[r] = 0.5 + static_cast<double>(r) * 1.25;
+  for (std::size_t r = 0; r < n; ++r) one[r] = -1.0 - static_cast<double>(r);
+  const std::uint32_t id[4] = {36, 0, 17, 35};
+  __m256d x, y, z;
+  avx2::load_rows4(rows.data(), id, x, y, z);
+  alignas(32) double gx[4], gy[4], gz[4], g1[4];
+  _mm256_store_pd(gx, x), _mm256_store_pd(gy, y), _mm256_store_pd(gz, z);
+  _mm256_store_pd(g1, avx2::load4_pd(one.data(), id));
+  for (int l = 0; l < 4; ++l) {
+    CAPTURE(l);
+    CHECK(gx[l] == rows[3 * id[l]]);
+    CHECK(gy[l] == rows[3 * id[l] + 1]);
+    CHECK(gz[l] == rows[3 * id[l] + 2]);
+    CHECK(g1[l] == one[id[l]]);
+  }
+  // Every mask: its lanes, in order, at the front.
+  for (unsigned mask = 0; mask < 16; ++mask) {
+    alignas(32) double d[4];
+    alignas(16) std::uint32_t u[4];
+    _mm256_store_pd(d, avx2::compress_pd(mask, _mm256_setr_pd(10.5, 11.5, 12.5, 13.5)));
+    _mm_store_si128(reinterpret_cast<__m128i*>(u), avx2::compress_epi32(mask, _mm_setr_epi32(20, 21, 22, 23)));
+    int k = 0;
+    for (int l = 0; l < 4; ++l)
+      if ((mask >> l) & 1u) {
+        CHECK(d[k] == 10.5 + l);
+        CHECK(u[k] == static_cast<std::uint32_t>(20 + l));
+        ++k;
+      }
   }
 }
 #endif
