@@ -11,6 +11,7 @@
 #if defined(__AVX512F__) && defined(__AVX512VL__)
 #include <immintrin.h>
 #endif
+#include "model/simd_avx2.h"
 
 #include "model/parallel.h"
 
@@ -73,6 +74,36 @@ std::size_t scan_candidates(const double* xs, const double* ys, const double* zs
                         _mm256_maskz_compress_epi32(hit, _mm256_min_epu32(av, b)));
     _mm256_storeu_si256(reinterpret_cast<__m256i*>(pj + m),
                         _mm256_maskz_compress_epi32(hit, _mm256_max_epu32(av, b)));
+    m += static_cast<std::size_t>(__builtin_popcount(hit));
+  }
+  return m;
+}
+bool scan_is_vectorized() { return true; }
+#elif defined(PASTEMIX_AVX2_LANES)
+// Four candidates per instruction (AVX2 alone, model/simd_avx2.h): the AVX-512 scan's operations, the tail
+// by masked loads, the hits packed by a table's permute.
+std::size_t scan_candidates(const double* xs, const double* ys, const double* zs, const double* rs,
+                            const std::uint32_t* sorted, std::uint32_t s0, std::uint32_t s1, std::uint32_t a,
+                            const Vec3& xa, double ra, std::uint32_t* pi, std::uint32_t* pj, std::size_t m) {
+  const __m256d ax = _mm256_set1_pd(xa.x), ay = _mm256_set1_pd(xa.y), az = _mm256_set1_pd(xa.z);
+  const __m256d rav = _mm256_set1_pd(ra);
+  const __m128i av = _mm_set1_epi32(static_cast<int>(a));
+  const __m128i lane = _mm_setr_epi32(0, 1, 2, 3);
+  for (std::uint32_t s = s0; s < s1; s += 4) {
+    const std::uint32_t left = s1 - s;
+    const __m128i live32 = _mm_cmpgt_epi32(_mm_set1_epi32(static_cast<int>(std::min(left, 4u))), lane);
+    const __m256i live = _mm256_cvtepi32_epi64(live32);  // all ones in the live lanes
+    const __m256d dx = _mm256_sub_pd(_mm256_maskload_pd(xs + s, live), ax);
+    const __m256d dy = _mm256_sub_pd(_mm256_maskload_pd(ys + s, live), ay);
+    const __m256d dz = _mm256_sub_pd(_mm256_maskload_pd(zs + s, live), az);
+    const __m256d cut = _mm256_add_pd(rav, _mm256_maskload_pd(rs + s, live));
+    const __m256d d2 = avx2::norm2(dx, dy, dz);
+    const unsigned hit = static_cast<unsigned>(_mm256_movemask_pd(_mm256_cmp_pd(d2, _mm256_mul_pd(cut, cut), _CMP_LT_OQ))) &
+                         static_cast<unsigned>(_mm_movemask_ps(_mm_castsi128_ps(live32)));
+    const __m128i b = _mm_maskload_epi32(reinterpret_cast<const int*>(sorted + s), live32);
+    // Stored whole: the caller's buffers have kSlack entries of slack.
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(pi + m), avx2::compress_epi32(hit, _mm_min_epu32(av, b)));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(pj + m), avx2::compress_epi32(hit, _mm_max_epu32(av, b)));
     m += static_cast<std::size_t>(__builtin_popcount(hit));
   }
   return m;

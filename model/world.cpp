@@ -124,14 +124,19 @@ inline void World::kick_claimed_twice(long a, double h) {
 }
 
 // The two half kicks of particles a0 .. a0 + 7 by the first active kick pass, where it claims all eight and
-// can kick them at once (FluidForces::kick8): the bits kick_claimed_twice gives each. False: nothing done.
+// can kick them at once (FluidForces::kick8; a0 .. a0 + 3 and kick4 with AVX2 alone): the bits
+// kick_claimed_twice gives each. False: nothing done.
 bool World::kick8_by_pass(long a0, double h) {
   bool done = false, first = true;
   for_each_pass(forces_, [&](auto& pass) {
     if constexpr ((std::decay_t<decltype(pass)>::info.adds & adds::kick) != 0)
       if (first && pass.active()) {
         first = false;  // only the pass kick_claimed_twice would ask first
+#if defined(PASTEMIX_AVX2_LANES)
+        if constexpr (requires { pass.kick4(a0, p_, accel_, h); }) done = pass.kick4(a0, p_, accel_, h);
+#else
         if constexpr (requires { pass.kick8(a0, p_, accel_, h); }) done = pass.kick8(a0, p_, accel_, h);
+#endif
       }
   });
   return done;
@@ -321,10 +326,10 @@ void World::close_kicks_blocked(const PassStep<Law, Roll>& s, Lane& lane, double
         continue;
       }
 #elif defined(PASTEMIX_AVX2_LANES)
-      if (full(e, m)) {  // (the fluid's lanes one at a time: its kick8 forms are AVX-512 only)
+      if (full(e, m)) {
         if (std::none_of(idx + e, idx + e + 4, claimed_by_pass))
           kick::velocity4(p_, accel_, h, idx[e]);
-        else
+        else if (!kick8_by_pass(idx[e], h))
           for (int l = e; l < e + 4; ++l) kick_claimed_twice(idx[l], h);
         kick::spins4(p_, h, b, e, idx[e]);
         e += 4;

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// asin(x) by a polynomial, in a scalar and an 8-lane AVX-512 form that run the same operations (the same bits).
+// asin(x) by a polynomial, in a scalar, an 8-lane AVX-512 and a 4-lane AVX2 form that run the same operations
+// (the same bits).
 //
 // Why (issue 19): the collective rule's footprint (collective.cpp, strip_lengths) evaluates the integral of a
 // disc's chord at every strip boundary it crosses, t sqrt(r^2 - t^2) + r^2 asin(t / r): ~640k per update of
@@ -16,7 +17,7 @@
 
 #include <cmath>
 
-#if defined(__AVX512F__)
+#if defined(__AVX512F__) || (defined(__AVX2__) && defined(__FMA__))
 #include <immintrin.h>
 #endif
 
@@ -63,6 +64,23 @@ inline __m512d asin8(__m512d x) {
   const __m512d r = _mm512_mask_blend_pd(big, core, top);
   const __m512i ri = _mm512_castpd_si512(r);  // copysign(r, x):
   return _mm512_castsi512_pd(_mm512_or_si512(_mm512_maskz_andnot_epi64(0xff, sign, ri), _mm512_and_si512(sign, xi)));
+}
+#elif defined(__AVX2__) && defined(__FMA__)
+// asin_poly of four lanes (AVX2 alone): the same operations per lane.
+inline __m256d asin4(__m256d x) {
+  const __m256d sign = _mm256_set1_pd(-0.0);
+  const __m256d a = _mm256_andnot_pd(sign, x);
+  const __m256d big = _mm256_cmp_pd(a, _mm256_set1_pd(0.5), _CMP_GT_OQ);
+  const __m256d half_gap = _mm256_mul_pd(_mm256_set1_pd(0.5), _mm256_sub_pd(_mm256_set1_pd(1.0), a));
+  const __m256d s = _mm256_blendv_pd(a, _mm256_sqrt_pd(half_gap), big);
+  const __m256d z = _mm256_mul_pd(s, s);
+  __m256d p = _mm256_set1_pd(kAsinP[14]);
+  for (int k = 13; k >= 0; --k) p = _mm256_fmadd_pd(p, z, _mm256_set1_pd(kAsinP[k]));
+  const __m256d core = _mm256_fmadd_pd(_mm256_mul_pd(s, z), p, s);
+  const __m256d top = _mm256_sub_pd(_mm256_set1_pd(kPio2Hi),
+                                    _mm256_sub_pd(_mm256_mul_pd(_mm256_set1_pd(2.0), core), _mm256_set1_pd(kPio2Lo)));
+  const __m256d r = _mm256_blendv_pd(core, top, big);
+  return _mm256_or_pd(_mm256_andnot_pd(sign, r), _mm256_and_pd(sign, x));  // copysign(r, x)
 }
 #endif
 

@@ -52,6 +52,7 @@
 #include "model/fluid/drag_kick.h"
 #include "model/laws/registry.h"
 #include "model/particles.h"
+#include "model/simd_avx2.h"
 #include "model/simd_vec3.h"
 
 namespace pastemix::model {
@@ -262,6 +263,70 @@ class FluidField {
     store_aos8(&p.v[a0], to_aos(v));
     return true;
   }
+#elif defined(PASTEMIX_AVX2_LANES)
+  // kick8_linear and kick8_affine with four lanes (AVX2 alone, model/simd_avx2.h): the same operations.
+  bool kick4_linear(long a0, Particles& p, const Vec3& g, double h) const {
+    const std::size_t i0 = static_cast<std::size_t>(a0);
+    if (!(h == 0.5 * dt_ && g.x == g_.x && g.y == g_.y && g.z == g_.z)) return false;
+    alignas(32) double rho_vsub[4];
+    unsigned buoyant = 0;
+    for (std::size_t l = 0; l < 4; ++l) {
+      const std::size_t i = i0 + l;
+      if (!(region_of_[i] >= 0 && lin_k_[i] > 0.0)) return false;
+      const double rho_b = buoyant_density_[static_cast<std::size_t>(region_of_[i])];
+      rho_vsub[l] = rho_b * v_sub_[i];
+      if (rho_b > 0.0) buoyant |= 1u << l;
+    }
+    using namespace avx2;
+    const Aos4 force = total_force4(p, a0, g, rho_vsub, buoyant);
+    const Aos4 decay = spread(_mm256_loadu_pd(&lin_decay_[i0])), gain = spread(_mm256_loadu_pd(&lin_gain_[i0]));
+    const auto once = [](__m256d v, __m256d d, __m256d fo, __m256d ga) {
+      return _mm256_add_pd(_mm256_mul_pd(v, d), _mm256_mul_pd(fo, ga));
+    };
+    Aos4 v = load_aos4(&p.v[a0].x);
+    for (int k = 0; k < 2; ++k)
+      v = {once(v.f0, decay.f0, force.f0, gain.f0), once(v.f1, decay.f1, force.f1, gain.f1),
+           once(v.f2, decay.f2, force.f2, gain.f2)};
+    store_aos4(&p.v[a0].x, v);
+    return true;
+  }
+  bool kick4_affine(long a0, Particles& p, const Vec3& g, double h) const {
+    const std::size_t i0 = static_cast<std::size_t>(a0);
+    if (!(h == 0.5 * dt_ && g.x == g_.x && g.y == g_.y && g.z == g_.z)) return false;
+    alignas(32) double rho_vsub[4], held[4];
+    unsigned buoyant = 0;
+    for (std::size_t l = 0; l < 4; ++l) {
+      const std::size_t i = i0 + l;
+      if (!(region_of_[i] >= 0 && !(lin_k_[i] > 0.0) && aff_k_[i] > 0.0)) return false;
+      const double rho_b = buoyant_density_[static_cast<std::size_t>(region_of_[i])];
+      rho_vsub[l] = rho_b * v_sub_[i];
+      if (rho_b > 0.0) buoyant |= 1u << l;
+      held[l] = d0_[i] * yield_factor(static_cast<long>(i));
+    }
+    using namespace avx2;
+    const Soa4 F = to_soa(total_force4(p, a0, g, rho_vsub, buoyant));
+    const __m256d decay = _mm256_loadu_pd(&aff_decay_[i0]), fgain = _mm256_loadu_pd(&aff_fgain_[i0]);
+    const __m256d limit2 = _mm256_loadu_pd(&aff_limit2_[i0]);
+    const __m256d removable = _mm256_mul_pd(_mm256_load_pd(held), _mm256_loadu_pd(&aff_gain_[i0]));
+    const auto below = [&](__m256d s2) { return _mm256_movemask_pd(_mm256_cmp_pd(s2, limit2, _CMP_LT_OQ)) == 0xf; };
+    Soa4 v = to_soa(load_aos4(&p.v[a0].x));
+    for (int k = 0; k < 2; ++k) {
+      if (!below(avx2::norm2(v.x, v.y, v.z))) return false;
+      const Soa4 o{_mm256_add_pd(_mm256_mul_pd(v.x, decay), _mm256_mul_pd(F.x, fgain)),
+                   _mm256_add_pd(_mm256_mul_pd(v.y, decay), _mm256_mul_pd(F.y, fgain)),
+                   _mm256_add_pd(_mm256_mul_pd(v.z, decay), _mm256_mul_pd(F.z, fgain))};
+      const __m256d speed2 = avx2::norm2(o.x, o.y, o.z);
+      if (!below(speed2)) return false;
+      // remove_rest: +0 where speed <= removable, else scaled by (speed - removable) / speed.
+      const __m256d speed = _mm256_sqrt_pd(speed2);
+      const __m256d moving = _mm256_cmp_pd(speed, removable, _CMP_NLE_UQ);
+      const __m256d scale = _mm256_div_pd(_mm256_sub_pd(speed, removable), speed);
+      v = {_mm256_and_pd(moving, _mm256_mul_pd(o.x, scale)), _mm256_and_pd(moving, _mm256_mul_pd(o.y, scale)),
+           _mm256_and_pd(moving, _mm256_mul_pd(o.z, scale))};
+    }
+    store_aos4(&p.v[a0].x, to_aos(v));
+    return true;
+  }
 #endif
 
   bool inside(long a) const { return region_of_[a] >= 0; }
@@ -379,6 +444,25 @@ class FluidField {
     force.f1 = _mm512_mask_sub_pd(force.f1, on[1], force.f1, _mm512_mul_pd(G.f1, rv.f1));
     force.f2 = _mm512_mask_sub_pd(force.f2, on[2], force.f2, _mm512_mul_pd(G.f2, rv.f2));
     return force;
+  }
+#elif defined(PASTEMIX_AVX2_LANES)
+  static avx2::Aos4 total_force4(const Particles& p, long a0, const Vec3& g, const double* rho_vsub, unsigned buoyant) {
+    using namespace avx2;
+    const Aos4 m = spread(_mm256_loadu_pd(&p.mass[a0])), f = load_aos4(&p.f[a0].x), G = repeat(g.x, g.y, g.z);
+    Aos4 force{_mm256_add_pd(f.f0, _mm256_mul_pd(G.f0, m.f0)), _mm256_add_pd(f.f1, _mm256_mul_pd(G.f1, m.f1)),
+               _mm256_add_pd(f.f2, _mm256_mul_pd(G.f2, m.f2))};
+    if (buoyant == 0) return force;
+    const Aos4 rv = spread(_mm256_loadu_pd(rho_vsub));
+    const Aos4 less{_mm256_sub_pd(force.f0, _mm256_mul_pd(G.f0, rv.f0)), _mm256_sub_pd(force.f1, _mm256_mul_pd(G.f1, rv.f1)),
+                    _mm256_sub_pd(force.f2, _mm256_mul_pd(G.f2, rv.f2))};
+    if (buoyant == 0xfu) return less;
+    // Component c of the twelve (register c / 4, lane c % 4) belongs to particle c / 3.
+    alignas(32) std::int64_t on[12];
+    for (int c = 0; c < 12; ++c) on[c] = ((buoyant >> (c / 3)) & 1u) ? -1 : 0;
+    const auto pick = [&](int r, __m256d keep, __m256d sub) {
+      return _mm256_blendv_pd(keep, sub, _mm256_castsi256_pd(_mm256_load_si256(reinterpret_cast<const __m256i*>(on + 4 * r))));
+    };
+    return {pick(0, force.f0, less.f0), pick(1, force.f1, less.f1), pick(2, force.f2, less.f2)};
   }
 #endif
   // Clusters are recomputed only when their input changed: the members, their positions, the surfaces or

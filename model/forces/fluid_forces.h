@@ -78,6 +78,12 @@ struct FluidForces {
     return false;
 #endif
   }
+#if defined(PASTEMIX_AVX2_LANES)
+  // The same for particles a0 .. a0 + 3 (AVX2 alone: FluidField::kick4_linear, kick4_affine).
+  bool kick4(long a0, Particles& p, const Vec3& g, double h) const {
+    return field->kick4_linear(a0, p, g, h) || field->kick4_affine(a0, p, g, h);
+  }
+#endif
   // New velocity after a half kick h (s) under the non-drag force F (N, gravity included).
   Vec3 kick(long a, const Vec3& v, const Vec3& F, double mass, double radius, double h, const Vec3& g) const {
     return field->kick(a, v, F, mass, radius, h, g);

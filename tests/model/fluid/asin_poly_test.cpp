@@ -75,4 +75,18 @@ TEST_CASE("asin8: the scalar form's bits in every lane") {
   }
   CHECK(differ == 0);
 }
+#elif defined(__AVX2__) && defined(__FMA__)
+TEST_CASE("asin4: the scalar form's bits in every lane") {
+  const std::vector<double> x = points();
+  long differ = 0;
+  for (std::size_t k = 0; k + 4 <= x.size(); k += 4) {
+    alignas(32) double out[4];
+    _mm256_store_pd(out, asin4(_mm256_loadu_pd(x.data() + k)));
+    for (int l = 0; l < 4; ++l) {
+      const double one = asin_poly(x[k + static_cast<std::size_t>(l)]);
+      differ += std::memcmp(&out[l], &one, sizeof one) != 0;
+    }
+  }
+  CHECK(differ == 0);
+}
 #endif

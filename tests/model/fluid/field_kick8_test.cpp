@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// FluidField's eight-at-a-time kicks (kick8_linear, kick8_affine; the blocked kick of world.cpp): both half
+// FluidField's eight-at-a-time kicks (kick8_linear, kick8_affine; kick4_* with AVX2 alone; the blocked kick of
+// world.cpp): both half
 // kicks of eight particles give, bit for bit, what kick() gives each one at a time, in a Newtonian fluid (the
 // linear branch) and in a Bingham paste at rest and sliding (the affine branch, its rest resistance holding
 // some spheres); a group with a sphere outside, on another branch or too fast for the affine one is declined
@@ -46,8 +47,19 @@ FluidRegion region(bool paste) {
   return reg;
 }
 
-// Groups 0 .. 7 of eight: kick8 (the field's linear or affine form) against kick() twice per sphere.
-// Returns how many groups were kicked eight at a time.
+#if defined(__AVX512F__)
+constexpr int kW = 8;  // the field's lanes
+bool lanes_linear(const FluidField& f, long a0, Particles& q, const Vec3& g, double h) { return f.kick8_linear(a0, q, g, h); }
+bool lanes_affine(const FluidField& f, long a0, Particles& q, const Vec3& g, double h) { return f.kick8_affine(a0, q, g, h); }
+#elif defined(PASTEMIX_AVX2_LANES)
+constexpr int kW = 4;
+bool lanes_linear(const FluidField& f, long a0, Particles& q, const Vec3& g, double h) { return f.kick4_linear(a0, q, g, h); }
+bool lanes_affine(const FluidField& f, long a0, Particles& q, const Vec3& g, double h) { return f.kick4_affine(a0, q, g, h); }
+#endif
+
+#if defined(__AVX512F__) || defined(PASTEMIX_AVX2_LANES)
+// Groups of kW (eight, or four with AVX2 alone): the field's linear or affine form against kick() twice per
+// sphere. Returns how many groups were kicked at once.
 int check(bool paste, double speed, double force) {
   const double dt = 2e-5, h = 0.5 * dt;
   const Vec3 g{0, 0, -9.81};
@@ -56,13 +68,13 @@ int check(bool paste, double speed, double force) {
   field.set_step(dt, g);
   field.update(p);
   int eight = 0;
-  for (long a0 = 0; a0 < 64; a0 += 8) {
+  for (long a0 = 0; a0 < 64; a0 += kW) {
     Particles q = p;
-    const bool done = paste ? field.kick8_affine(a0, q, g, h) : field.kick8_linear(a0, q, g, h);
+    const bool done = paste ? lanes_affine(field, a0, q, g, h) : lanes_linear(field, a0, q, g, h);
     // The other form declines a group that is not its own.
     Particles r = p;
-    CHECK_FALSE((paste ? field.kick8_linear(a0, r, g, h) : field.kick8_affine(a0, r, g, h)));
-    for (long a = a0; a < a0 + 8; ++a) {
+    CHECK_FALSE((paste ? lanes_linear(field, a0, r, g, h) : lanes_affine(field, a0, r, g, h)));
+    for (long a = a0; a < a0 + kW; ++a) {
       const auto i = static_cast<std::size_t>(a);
       CHECK(same_bits(r.v[i], p.v[i]));
       if (!done) {
@@ -80,15 +92,18 @@ int check(bool paste, double speed, double force) {
   return eight;
 }
 
+#endif
+
 }  // namespace
 
-#if defined(__AVX512F__)
-TEST_CASE("fluid field: eight spheres' kicks at once give kick()'s bits, and a mixed group is declined") {
-  // Newtonian: every group inside is linear (the last group is above the region: declined).
-  CHECK(check(false, 0.3, 1e-3) == 7);
+#if defined(__AVX512F__) || defined(PASTEMIX_AVX2_LANES)
+TEST_CASE("fluid field: eight (four) spheres' kicks at once give kick()'s bits, and a mixed group is declined") {
+  const int inside = 56 / kW;  // groups wholly inside (spheres 56 .. 63 are above the region)
+  // Newtonian: every group inside is linear (the last ones are above the region: declined).
+  CHECK(check(false, 0.3, 1e-3) == inside);
   // Paste at rest under small forces (the rest resistance holds most) and sliding slowly: affine.
-  CHECK(check(true, 0.0, 1e-4) == 7);
-  CHECK(check(true, 0.01, 1e-3) == 7);
+  CHECK(check(true, 0.0, 1e-4) == inside);
+  CHECK(check(true, 0.01, 1e-3) == inside);
   // Too fast for the affine branch, before the kick or after it (a large force from rest): every group
   // declined (kick() takes its general branch).
   CHECK(check(true, 3.0, 1e-3) == 0);
