@@ -158,6 +158,51 @@ void FluidField::begin_batch(const Particles& p, int threads, long partition) {
   for (Lane& lane : lanes_) lane.surface = surface_, lane.since = since_clusters_, lane.pending = false;
 }
 
+// One region (the usual case): visit()'s steps with the wetted volumes of a block of visits first, in a loop
+// that stores nothing to the field, so that the neighbouring spheres' divisions overlap, and the region's sum
+// in a register (in the array, each addition waited on the last one's store). A sphere outside the region's
+// footprint gets volume 0, which visit() treats as it treats "outside": the same members, flags and sums, in
+// the same order (issue 19, session 38: the "inside" variant of bench/fluid_hook.sh spent ~17 ns per
+// particle-step in this pass on a Zen 3 VM; its fluid stage 0.333-0.468 -> 0.267-0.334 s, 3 interleaved pairs).
+template <class Id>
+std::size_t FluidField::visit_one_region(const Particles& p, Lane& lane, std::size_t visits, Id&& id) {
+  std::vector<long>& members = lane.members[static_cast<std::size_t>(lane.par)];
+  std::vector<Wet>& wet = lane.wet[static_cast<std::size_t>(lane.par)];
+  const FluidRegion& reg = regions_[0];
+  const double z_s = lane.surface[0];
+  constexpr std::size_t kBlock = 64;
+  std::size_t ids[kBlock];
+  double vol[kBlock];
+  double sum = 0.0;
+  std::size_t found = 0;
+  for (std::size_t b0 = 0; b0 < visits; b0 += kBlock) {
+    const std::size_t nb = std::min(kBlock, visits - b0);
+    for (std::size_t q = 0; q < nb; ++q) ids[q] = id(b0 + q);
+    for (std::size_t q = 0; q < nb; ++q) {
+      const Vec3& x = p.x[ids[q]];
+      const double vs = wetted_volume(reg, x.z, p.radius[ids[q]], z_s, reg.partial_submergence);
+      vol[q] = reg.contains_xy(x.x, x.y) ? vs : 0.0;
+    }
+    for (std::size_t q = 0; q < nb; ++q) {
+      const std::size_t a = ids[q];
+      const double vs = vol[q];
+      if (vs <= 0.0) {
+        region_of_[a] = -1, v_sub_[a] = 0.0;
+        continue;
+      }
+      const bool same = region_of_[a] == 0 && v_sub_[a] == vs && rest_region_[a] == 0;
+      region_of_[a] = 0;
+      v_sub_[a] = vs;
+      if (!same) lane.changed.push_back(static_cast<long>(a));
+      members[found] = static_cast<long>(a);
+      wet[found++] = {vs, 0};
+      sum += vs;
+    }
+  }
+  lane.wet_sum[static_cast<std::size_t>(lane.par)][0] = sum;
+  return found;
+}
+
 void FluidField::update_part(const Particles& p, int thread, const std::vector<std::uint32_t>* own) {
   Lane& lane = lanes_[static_cast<std::size_t>(thread)];
   if (lane.pending) rise(lane.par, lane, lane.surface);  // the last step's rise (every lane: the same bits)
@@ -211,43 +256,7 @@ void FluidField::update_part(const Particles& p, int thread, const std::vector<s
     return listed ? static_cast<std::size_t>(lane.candidates[q]) : own ? (*own)[q] : q;
   };
   if (regions_.size() == 1) {
-    // One region (the usual case): visit()'s steps with the wetted volumes of a block of visits first, in a
-    // loop that stores nothing to the field, so that the neighbouring spheres' divisions overlap, and the
-    // region's sum in a register (in the array, each addition waited on the last one's store). A sphere
-    // outside the region's footprint gets volume 0, which visit() treats as it treats "outside": the same
-    // members, flags and sums, in the same order (issue 19, session 38: the "inside" variant of
-    // bench/fluid_hook.sh spent ~17 ns per particle-step in this pass).
-    const FluidRegion& reg = regions_[0];
-    const double z_s = lane.surface[0];
-    constexpr std::size_t kBlock = 64;
-    std::size_t ids[kBlock];
-    double vol[kBlock];
-    double sum = 0.0;
-    for (std::size_t b0 = 0; b0 < visits; b0 += kBlock) {
-      const std::size_t nb = std::min(kBlock, visits - b0);
-      for (std::size_t q = 0; q < nb; ++q) ids[q] = visited(b0 + q);
-      for (std::size_t q = 0; q < nb; ++q) {
-        const Vec3& x = p.x[ids[q]];
-        const double vs = wetted_volume(reg, x.z, p.radius[ids[q]], z_s, reg.partial_submergence);
-        vol[q] = reg.contains_xy(x.x, x.y) ? vs : 0.0;
-      }
-      for (std::size_t q = 0; q < nb; ++q) {
-        const std::size_t a = ids[q];
-        const double vs = vol[q];
-        if (vs <= 0.0) {
-          region_of_[a] = -1, v_sub_[a] = 0.0;
-          continue;
-        }
-        const bool same = region_of_[a] == 0 && v_sub_[a] == vs && rest_region_[a] == 0;
-        region_of_[a] = 0;
-        v_sub_[a] = vs;
-        if (!same) changed.push_back(static_cast<long>(a));
-        members[found] = static_cast<long>(a);
-        wet[found++] = {vs, 0};
-        sum += vs;
-      }
-    }
-    wet_sum[0] = sum;
+    found = visit_one_region(p, lane, visits, visited);
   } else {
     for (std::size_t q = 0; q < visits; ++q) visit(visited(q));
   }

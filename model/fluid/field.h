@@ -388,6 +388,10 @@ class FluidField {
   std::vector<Lane> lanes_;
   long partition_ = kNoLanes;  // the stamp begin_batch() made the lanes for
   void refresh(const Particles& p, Lane& lane, const std::vector<std::uint32_t>* own) const;
+  // update_part's visits with one region: the particles id(q), q < visits, into the lane's [par] lists
+  // (field.cpp). Returns the members found.
+  template <class Id>
+  std::size_t visit_one_region(const Particles& p, Lane& lane, std::size_t visits, Id&& id);
   // The surfaces after the step whose members are in every lane's [par] (sums in ascending particle order).
   void rise(int par, Lane& scratch, std::vector<double>& surface) const;
   // Calls f(lane, q) for every lane's entry q of list(lane), in ascending particle order.
