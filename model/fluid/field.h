@@ -187,6 +187,26 @@ class FluidField {
     return kick_general(a, v, F, mass, radius, h, g);
   }
 
+  // The checks before a kick of W lanes (kick8_* / kick4_*): the step's half kick and gravity, every lane
+  // inside and on the linear (affine = false) or the affine branch; then per lane rho_b V_sub, the buoyant
+  // lanes and (affine) the rest resistance held. False: a lane is not for this form.
+  template <int W>
+  bool lanes_ready(std::size_t i0, const Vec3& g, double h, bool affine, double* rho_vsub, double* held,
+                   unsigned& buoyant) const {
+    if (!(h == 0.5 * dt_ && g.x == g_.x && g.y == g_.y && g.z == g_.z)) return false;
+    buoyant = 0;
+    for (std::size_t l = 0; l < W; ++l) {
+      const std::size_t i = i0 + l;
+      const bool mine = affine ? !(lin_k_[i] > 0.0) && aff_k_[i] > 0.0 : lin_k_[i] > 0.0;
+      if (!(region_of_[i] >= 0 && mine)) return false;
+      const double rho_b = buoyant_density_[static_cast<std::size_t>(region_of_[i])];  // 0: buoyancy off
+      rho_vsub[l] = rho_b * v_sub_[i];
+      if (rho_b > 0.0) buoyant |= 1u << l;
+      if (affine) held[l] = d0_[i] * yield_factor(static_cast<long>(i));
+    }
+    return true;
+  }
+
 #if defined(__AVX512F__)
   // Particles a0 .. a0 + 7's two half kicks (the closing one of a step and the opening one of the next, the
   // same force) where all eight are inside and on the inline linear branch of kick(): v += (v decay + force
@@ -194,16 +214,9 @@ class FluidField {
   // nothing changed, otherwise.
   bool kick8_linear(long a0, Particles& p, const Vec3& g, double h) const {
     const std::size_t i0 = static_cast<std::size_t>(a0);
-    if (!(h == 0.5 * dt_ && g.x == g_.x && g.y == g_.y && g.z == g_.z)) return false;
     alignas(64) double rho_vsub[8];
     unsigned buoyant = 0;  // lanes with buoyancy on
-    for (std::size_t l = 0; l < 8; ++l) {
-      const std::size_t i = i0 + l;
-      if (!(region_of_[i] >= 0 && lin_k_[i] > 0.0)) return false;
-      const double rho_b = buoyant_density_[static_cast<std::size_t>(region_of_[i])];  // 0: buoyancy off
-      rho_vsub[l] = rho_b * v_sub_[i];
-      if (rho_b > 0.0) buoyant |= 1u << l;
-    }
+    if (!lanes_ready<8>(i0, g, h, false, rho_vsub, nullptr, buoyant)) return false;
     using namespace simd;
     const Aos8 force = total_force8(p, a0, g, rho_vsub, buoyant);
     const Aos8 decay = spread(_mm512_loadu_pd(&lin_decay_[i0])), gain = spread(_mm512_loadu_pd(&lin_gain_[i0]));
@@ -226,17 +239,9 @@ class FluidField {
   // or leaves the affine one (its speed reaches s_max): kick() then takes it one particle at a time.
   bool kick8_affine(long a0, Particles& p, const Vec3& g, double h) const {
     const std::size_t i0 = static_cast<std::size_t>(a0);
-    if (!(h == 0.5 * dt_ && g.x == g_.x && g.y == g_.y && g.z == g_.z)) return false;
     alignas(64) double rho_vsub[8], held[8];
     unsigned buoyant = 0;
-    for (std::size_t l = 0; l < 8; ++l) {
-      const std::size_t i = i0 + l;
-      if (!(region_of_[i] >= 0 && !(lin_k_[i] > 0.0) && aff_k_[i] > 0.0)) return false;
-      const double rho_b = buoyant_density_[static_cast<std::size_t>(region_of_[i])];
-      rho_vsub[l] = rho_b * v_sub_[i];
-      if (rho_b > 0.0) buoyant |= 1u << l;
-      held[l] = d0_[i] * yield_factor(static_cast<long>(i));
-    }
+    if (!lanes_ready<8>(i0, g, h, true, rho_vsub, held, buoyant)) return false;
     using namespace simd;
     const Soa8 F = to_soa(total_force8(p, a0, g, rho_vsub, buoyant));
     const __m512d decay = _mm512_loadu_pd(&aff_decay_[i0]), fgain = _mm512_loadu_pd(&aff_fgain_[i0]);
@@ -267,16 +272,9 @@ class FluidField {
   // kick8_linear and kick8_affine with four lanes (AVX2 alone, model/simd_avx2.h): the same operations.
   bool kick4_linear(long a0, Particles& p, const Vec3& g, double h) const {
     const std::size_t i0 = static_cast<std::size_t>(a0);
-    if (!(h == 0.5 * dt_ && g.x == g_.x && g.y == g_.y && g.z == g_.z)) return false;
     alignas(32) double rho_vsub[4];
     unsigned buoyant = 0;
-    for (std::size_t l = 0; l < 4; ++l) {
-      const std::size_t i = i0 + l;
-      if (!(region_of_[i] >= 0 && lin_k_[i] > 0.0)) return false;
-      const double rho_b = buoyant_density_[static_cast<std::size_t>(region_of_[i])];
-      rho_vsub[l] = rho_b * v_sub_[i];
-      if (rho_b > 0.0) buoyant |= 1u << l;
-    }
+    if (!lanes_ready<4>(i0, g, h, false, rho_vsub, nullptr, buoyant)) return false;
     using namespace avx2;
     const Aos4 force = total_force4(p, a0, g, rho_vsub, buoyant);
     const Aos4 decay = spread(_mm256_loadu_pd(&lin_decay_[i0])), gain = spread(_mm256_loadu_pd(&lin_gain_[i0]));
@@ -292,17 +290,9 @@ class FluidField {
   }
   bool kick4_affine(long a0, Particles& p, const Vec3& g, double h) const {
     const std::size_t i0 = static_cast<std::size_t>(a0);
-    if (!(h == 0.5 * dt_ && g.x == g_.x && g.y == g_.y && g.z == g_.z)) return false;
     alignas(32) double rho_vsub[4], held[4];
     unsigned buoyant = 0;
-    for (std::size_t l = 0; l < 4; ++l) {
-      const std::size_t i = i0 + l;
-      if (!(region_of_[i] >= 0 && !(lin_k_[i] > 0.0) && aff_k_[i] > 0.0)) return false;
-      const double rho_b = buoyant_density_[static_cast<std::size_t>(region_of_[i])];
-      rho_vsub[l] = rho_b * v_sub_[i];
-      if (rho_b > 0.0) buoyant |= 1u << l;
-      held[l] = d0_[i] * yield_factor(static_cast<long>(i));
-    }
+    if (!lanes_ready<4>(i0, g, h, true, rho_vsub, held, buoyant)) return false;
     using namespace avx2;
     const Soa4 F = to_soa(total_force4(p, a0, g, rho_vsub, buoyant));
     const __m256d decay = _mm256_loadu_pd(&aff_decay_[i0]), fgain = _mm256_loadu_pd(&aff_fgain_[i0]);
