@@ -464,8 +464,16 @@ template <class Batch, long N>
 // `cur`) takes both particles' velocities and spins from their ghost copies and its spring from cross_hist[cur],
 // as the one-at-a-time staging does. With AVX2 alone, two groups of four (stage4). False (nothing staged)
 // where the build has neither: the caller stages them one at a time.
+// With AVX2 alone stage8 is inlined into the pair pass (its two stage4s out of line cost the bench bed ~5 % of
+// its contact stage on a Zen 3 VM: 5 of 6 interleaved pairs, session 38); the AVX-512 build keeps the
+// compiler's choice, as measured there.
+#if defined(PASTEMIX_AVX2_LANES)
+#define PASTEMIX_STAGE8_INLINE [[gnu::always_inline]] inline
+#else
+#define PASTEMIX_STAGE8_INLINE
+#endif
 template <class Batch, long N>
-bool stage8(Batch& B, int l0, const std::uint32_t* e8, const std::uint32_t* a8, const std::uint32_t* b8,
+PASTEMIX_STAGE8_INLINE bool stage8(Batch& B, int l0, const std::uint32_t* e8, const std::uint32_t* a8, const std::uint32_t* b8,
             const Separations<N>& sep, const double* sep2, const double* rsums, long q, const Particles& p,
             const PairList& L, int cur) {
 #if defined(__AVX512F__) && defined(__AVX512VL__)
