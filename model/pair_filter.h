@@ -24,6 +24,33 @@
 
 namespace pastemix::model {
 
+// Where a group of W pairs has cross pairs (lanes cm): those lanes read both particles' state from the ghost
+// copies of buffer `cur` (PairList::Ghost: x, v, w, nine doubles), the others from the store. The lanes'
+// addresses, shared by the eight-lane (Ghosts) and four-lane (Ghosts4) loads.
+template <int W>
+struct GhostLanes {
+  static_assert(sizeof(PairList::Ghost) == 9 * sizeof(double));
+  const double* G;
+  unsigned cm;
+  const std::uint32_t *a, *b;  // the lanes' i and j
+  std::uint32_t ga[W], gb[W];  // 9 x ghost slot of the lanes' i and j (cross lanes only)
+  GhostLanes(const PairList& L, int cur, unsigned cross_lanes, const std::uint32_t* ia, const std::uint32_t* ib)
+      : G(reinterpret_cast<const double*>(L.ghost[cur].data())), cm(cross_lanes), a(ia), b(ib) {
+    for (int l = 0; l < W; ++l) {
+      const bool cross = (cm >> l) & 1u;
+      ga[l] = cross ? 9 * L.ghost_of[a[l]] : 0;
+      gb[l] = cross ? 9 * L.ghost_of[b[l]] : 0;
+    }
+  }
+  // Row l at `off` of the Ghost (0 x, 3 v, 6 w) of i (of_j false) or j in a cross lane, of the Vec3 array
+  // `base` elsewhere.
+  [[gnu::always_inline]] const double* row(bool of_j, const double* base, int off, int l) const {
+    const std::uint32_t* id = of_j ? b : a;
+    const std::uint32_t* g = of_j ? gb : ga;
+    return ((cm >> l) & 1u) ? G + g[l] + off : base + 3 * static_cast<std::size_t>(id[l]);
+  }
+};
+
 #if defined(__AVX512F__) && defined(__AVX512VL__)
 // Eight rows of three doubles (row l at at(l): a Vec3 array's element, a ghost copy's x, v or w, a pair's
 // spring) as one register per component: eight masked 256-bit loads (three lanes each, so never past a row's
@@ -63,57 +90,24 @@ template <class At>
   return _mm512_maskz_insertf64x4(0xff, _mm512_castpd256_pd512(lo), hi, 1);
 }
 
-// Where a group of eight pairs has cross pairs (lanes cm): those lanes read both particles' state from the
-// ghost copies of buffer `cur` (PairList::Ghost: x, v, w, nine doubles), the others from the store.
-struct Ghosts {
-  static_assert(sizeof(PairList::Ghost) == 9 * sizeof(double));
-  const double* G;
-  unsigned cm;
-  const std::uint32_t *a, *b;  // the lanes' i and j
-  std::uint32_t ga[8], gb[8];  // 9 x ghost slot of the lanes' i and j (cross lanes only)
-  Ghosts(const PairList& L, int cur, unsigned cross_lanes, const std::uint32_t* a8, const std::uint32_t* b8)
-      : G(reinterpret_cast<const double*>(L.ghost[cur].data())), cm(cross_lanes), a(a8), b(b8) {
-    for (int l = 0; l < 8; ++l) {
-      const bool cross = (cm >> l) & 1u;
-      ga[l] = cross ? 9 * L.ghost_of[a[l]] : 0;
-      gb[l] = cross ? 9 * L.ghost_of[b[l]] : 0;
-    }
-  }
+// A group of eight pairs' ghost rows (GhostLanes above).
+struct Ghosts : GhostLanes<8> {
+  using GhostLanes<8>::GhostLanes;
   // Component rows at `off` of the Ghost (0 x, 3 v, 6 w) of i (of_j false) or j in the cross lanes, the Vec3
   // array `base` elsewhere.
   [[gnu::always_inline]] void rows(bool of_j, const double* base, int off, __m512d& x, __m512d& y,
                                    __m512d& z) const {
-    const std::uint32_t* id = of_j ? b : a;
-    const std::uint32_t* g = of_j ? gb : ga;
-    const auto at = [&](int l) __attribute__((always_inline)) {
-      return ((cm >> l) & 1u) ? G + g[l] + off : base + 3 * static_cast<std::size_t>(id[l]);
-    };
+    const auto at = [&](int l) __attribute__((always_inline)) { return row(of_j, base, off, l); };
     rows8(at, x, y, z);
   }
 };
 #elif defined(PASTEMIX_AVX2_LANES)
 // Ghosts for a group of four pairs (AVX2): as Ghosts above, four lanes.
-struct Ghosts4 {
-  static_assert(sizeof(PairList::Ghost) == 9 * sizeof(double));
-  const double* G;
-  unsigned cm;
-  const std::uint32_t *a, *b;
-  std::uint32_t ga[4], gb[4];
-  Ghosts4(const PairList& L, int cur, unsigned cross_lanes, const std::uint32_t* a4, const std::uint32_t* b4)
-      : G(reinterpret_cast<const double*>(L.ghost[cur].data())), cm(cross_lanes), a(a4), b(b4) {
-    for (int l = 0; l < 4; ++l) {
-      const bool cross = (cm >> l) & 1u;
-      ga[l] = cross ? 9 * L.ghost_of[a[l]] : 0;
-      gb[l] = cross ? 9 * L.ghost_of[b[l]] : 0;
-    }
-  }
+struct Ghosts4 : GhostLanes<4> {
+  using GhostLanes<4>::GhostLanes;
   [[gnu::always_inline]] void rows(bool of_j, const double* base, int off, __m256d& x, __m256d& y,
                                    __m256d& z) const {
-    const std::uint32_t* id = of_j ? b : a;
-    const std::uint32_t* g = of_j ? gb : ga;
-    const auto at = [&](int l) __attribute__((always_inline)) {
-      return ((cm >> l) & 1u) ? G + g[l] + off : base + 3 * static_cast<std::size_t>(id[l]);
-    };
+    const auto at = [&](int l) __attribute__((always_inline)) { return row(of_j, base, off, l); };
     avx2::rows4(at, x, y, z);
   }
 };
