@@ -18,10 +18,11 @@ using namespace pastemix::model;
 
 namespace {
 
-bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
-bool same_bits(const Vec3& a, const Vec3& b) { return same_bits(a.x, b.x) && same_bits(a.y, b.y) && same_bits(a.z, b.z); }
+// (maybe_unused: a build without vector lanes runs none of the tests that use these.)
+[[maybe_unused]] bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+[[maybe_unused]] bool same_bits(const Vec3& a, const Vec3& b) { return same_bits(a.x, b.x) && same_bits(a.y, b.y) && same_bits(a.z, b.z); }
 
-Particles random_particles(std::uint64_t seed, int n) {
+[[maybe_unused]] Particles random_particles(std::uint64_t seed, int n) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   Particles p;

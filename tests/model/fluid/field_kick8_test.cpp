@@ -18,11 +18,12 @@ using namespace pastemix::model::fluid;
 
 namespace {
 
-bool same_bits(const Vec3& a, const Vec3& b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+// (maybe_unused: a build without vector lanes runs none of the tests that use these.)
+[[maybe_unused]] bool same_bits(const Vec3& a, const Vec3& b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 // 64 spheres of 2-4 mm inside a 10 x 10 x 5 cm region (the first and the last eight of them from `out`:
 // above it).
-Particles rock(std::uint64_t seed, double speed, double force) {
+[[maybe_unused]] Particles rock(std::uint64_t seed, double speed, double force) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   Particles p;
@@ -35,7 +36,7 @@ Particles rock(std::uint64_t seed, double speed, double force) {
   return p;
 }
 
-FluidRegion region(bool paste) {
+[[maybe_unused]] FluidRegion region(bool paste) {
   FluidRegion reg;
   reg.x_min = reg.y_min = 0, reg.x_max = reg.y_max = 0.1, reg.z_bottom = 0, reg.z_surface0 = 0.05;
   if (paste) {
