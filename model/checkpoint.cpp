@@ -200,10 +200,13 @@ CheckpointInfo resume_from_checkpoint(const std::filesystem::path& path, const S
   {
     // One read of the whole file (a character at a time through istreambuf_iterator, case 3's 25 MB
     // checkpoint took 0.18 s of a resumed run's start: perf, session 39).
-    std::ifstream in(path, std::ios::binary | std::ios::ate);
+    std::ifstream in(path, std::ios::binary | std::ios::ate);  // opened at the end: tellg() is the size
     const std::streamsize size = in ? static_cast<std::streamsize>(in.tellg()) : -1;
-    if (size >= 0) image.resize(static_cast<std::size_t>(size)), in.seekg(0);
-    if (size < 0 || !in.read(image.data(), size)) throw InputError(path.string(), 0, "", "cannot read the checkpoint");
+    if (size >= 0) {
+      image.resize(static_cast<std::size_t>(size));
+      in.seekg(0).read(image.data(), size);
+    }
+    if (size < 0 || !in) throw InputError(path.string(), 0, "", "cannot read the checkpoint");
   }
   auto h5 = std::make_unique<H5Writer>(h5_tmp, image);
   h5->remove("/checkpoint");

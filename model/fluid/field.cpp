@@ -158,6 +158,19 @@ void FluidField::begin_batch(const Particles& p, int threads, long partition) {
   for (Lane& lane : lanes_) lane.surface = surface_, lane.since = since_clusters_, lane.pending = false;
 }
 
+// Particle a found in region `region` with wetted volume vs (m^3): its flags, and its member and wet entries. A
+// sphere that stays in its region with the same wetted volume (every sphere under the surface) would get
+// keep_sphere's phi to the bit and no new constants (set_step resets rest_region_ when they must be made
+// anew): it is not listed in lane.changed, so keep_sphere, with its division, is skipped.
+inline void FluidField::wetted(Lane& lane, std::size_t a, double vs, int region, long& member, Wet& wet) {
+  const bool same = region_of_[a] == region && v_sub_[a] == vs && rest_region_[a] == region;
+  region_of_[a] = region;
+  v_sub_[a] = vs;
+  if (!same) lane.changed.push_back(static_cast<long>(a));
+  member = static_cast<long>(a);
+  wet = {vs, region};
+}
+
 // One region (the usual case): visit()'s steps with the wetted volumes of a block of visits first, in a loop
 // that stores nothing to the field, so that the neighbouring spheres' divisions overlap, and the region's sum
 // in a register (in the array, each addition waited on the last one's store). A sphere outside the region's
@@ -190,12 +203,8 @@ std::size_t FluidField::visit_one_region(const Particles& p, Lane& lane, std::si
         region_of_[a] = -1, v_sub_[a] = 0.0;
         continue;
       }
-      const bool same = region_of_[a] == 0 && v_sub_[a] == vs && rest_region_[a] == 0;
-      region_of_[a] = 0;
-      v_sub_[a] = vs;
-      if (!same) lane.changed.push_back(static_cast<long>(a));
-      members[found] = static_cast<long>(a);
-      wet[found++] = {vs, 0};
+      wetted(lane, a, vs, 0, members[found], wet[found]);
+      ++found;
       sum += vs;
     }
   }
@@ -237,16 +246,8 @@ void FluidField::update_part(const Particles& p, int thread, const std::vector<s
       if (!reg.contains_xy(x.x, x.y)) continue;
       const double vs = wetted_volume(reg, x.z, p.radius[a], lane.surface[k], reg.partial_submergence);
       if (vs <= 0.0) continue;
-      const int region = static_cast<int>(k);
-      // A sphere that stays in its region with the same wetted volume (every sphere under the surface)
-      // would get keep_sphere's phi to the bit and no new constants (set_step resets rest_region_ when
-      // they must be made anew): keep_sphere, with its division, is skipped.
-      const bool same = region_of_[a] == region && v_sub_[a] == vs && rest_region_[a] == region;
-      region_of_[a] = region;
-      v_sub_[a] = vs;
-      if (!same) changed.push_back(static_cast<long>(a));
-      members[found] = static_cast<long>(a);
-      wet[found++] = {vs, region};
+      wetted(lane, a, vs, static_cast<int>(k), members[found], wet[found]);
+      ++found;
       wet_sum[k] += vs;
       return;  // the first region that holds the particle owns it
     }

@@ -382,6 +382,8 @@ class FluidField {
   // (field.cpp). Returns the members found.
   template <class Id>
   std::size_t visit_one_region(const Particles& p, Lane& lane, std::size_t visits, Id&& id);
+  // A visited particle found wetted: its flags, its member and wet entries (field.cpp).
+  void wetted(Lane& lane, std::size_t a, double vs, int region, long& member, Wet& wet);
   // The surfaces after the step whose members are in every lane's [par] (sums in ascending particle order).
   void rise(int par, Lane& scratch, std::vector<double>& surface) const;
   // Calls f(lane, q) for every lane's entry q of list(lane), in ascending particle order.
