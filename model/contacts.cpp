@@ -36,7 +36,9 @@ using Separations = model::Separations<kChunk>;
 // (lower, higher)) before their forces are added, so the lines of the partners' sums are written shortly
 // before the pair pass adds to them. Zeroed all at the start, a chapter-7 pour's partners' f and torque had
 // left the caches by then: perf put ~20 % of the pair pass's samples on their two loads (1 thread, t = 0.5 s,
-// 65k spheres). The same +0 before the same sums in the same order: the same bits.
+// 65k spheres); zeroed ahead, that segment's contact stage took 10-20 % less on 1 thread and the 207k pour's ~10 %
+// less, while 2 threads (each half of the pile in its core's caches) and 13k spheres did not change (issue 19,
+// session 40). The same +0 before the same sums in the same order: the same bits.
 class LazyZero {
  public:
   // own: the thread's particles, ascending; null: all n particles.
