@@ -41,9 +41,9 @@ using Separations = model::Separations<kChunk>;
 // session 40). The same +0 before the same sums in the same order: the same bits.
 class LazyZero {
  public:
-  // own: the thread's particles, ascending; null: all n particles.
-  LazyZero(Particles& p, const std::vector<std::uint32_t>* own, std::size_t n)
-      : p_(p), own_(own), n_(own ? own->size() : n), rot_(p.has_rotation) {}
+  // own: the thread's particles, ascending; null: all of p's particles.
+  LazyZero(Particles& p, const std::vector<std::uint32_t>* own)
+      : p_(p), own_(own), n_(own ? own->size() : p.size()), rot_(p.has_rotation) {}
   // Zeroes every owned particle with an index <= last not zeroed yet.
   void upto(std::size_t last) {
     if (!own_) {
@@ -65,6 +65,7 @@ class LazyZero {
     for (long q = 0; q < m; ++q) last = std::max(last, ib[q]);
     if (m > 0) upto(last);
   }
+  // Every owned particle not zeroed yet (upto's last + 1 must not wrap).
   void rest() { upto(std::numeric_limits<std::size_t>::max() - 1); }
 
  private:
@@ -257,7 +258,7 @@ template <class Law, class Roll>
 void pair_pass(const std::vector<typename Law::Params>& table, const std::vector<typename Roll::Params>& rolling,
                const StepContext& ctx, Particles& p, PairList& L, int thread, int parity) {
   const bool part = L.threads > 1;
-  LazyZero zero(p, part ? &L.own[static_cast<std::size_t>(thread)] : nullptr, p.size());
+  LazyZero zero(p, part ? &L.own[static_cast<std::size_t>(thread)] : nullptr);
   if (part) {
     // Segment by segment, in list order (each particle's sum still runs in ascending pair order): a run's
     // pairs as one thread's list, by pair index; the rest through the entries.
