@@ -95,6 +95,9 @@ class CollectiveYield {
   void begin(const CollectiveInput& in, int parts);
   void footprints(int part);
   ClusterStats finish(const CollectiveInput& in, std::vector<double>& factor);
+  // After begin(): per cluster to be measured, the parts' first strips and its strip count (parts + 1 rows,
+  // ascending; part t measures [cut[t], cut[t + 1])), cut at equal shares of the disc-strip crossings.
+  const std::vector<long>& part_cuts() const { return cut_; }
 
  private:
   std::vector<long> parent_, slot_;  // union-find over members; slot_[a]: member index of particle a or -1
@@ -115,6 +118,9 @@ class CollectiveYield {
   int parts_ = 1;
   std::array<std::vector<double>, kMaxParts> seg_;  // per part: the covered length of each strip's segments (m)
   std::vector<std::vector<std::size_t>> seg_start_;  // per part: where each pending cluster's lengths start
+  std::vector<long> cut_;         // per pending cluster: the parts' first strips, parts_ + 1 rows (cut_rows)
+  std::vector<long> row_scratch_;  // crossings per strip of the cluster being cut
+  void cut_rows(const Pending& c);
   long find(long k);
 };
 

@@ -257,3 +257,60 @@ TEST_CASE("collective: the footprints shared by 2, 3 or 7 parts give the factors
     CHECK(same == static_cast<long>(f1.size()));
   }
 }
+
+TEST_CASE("collective: the parts' strips are cut at equal shares of the discs' strip crossings") {
+  // One cluster crowded at one side (a dense pile of small spheres at low y, a sparse arm of large ones
+  // reaching to high y): cut at equal rows, part 0 would have most of the crossings; cut by crossings, each
+  // of 2 or 3 parts has its share within one row's crossings. The factors stay those of one part (the test
+  // above checks the bits; here the counts).
+  const double tau = 138.0, zs = 0.02, r_small = 1.25e-3, r_big = 2.5e-3;
+  Particles p;
+  for (int k = 0; k < 12; ++k)      // a touching chain along y: the arm
+    p.add(0, r_big, 2760, {0.0, 1.99 * r_big * k, zs - 0.004}, {}, {});
+  for (int ix = 1; ix <= 10; ++ix)  // the crowd: small spheres in a touching block at the arm's low end
+    for (int iy = 0; iy < 4; ++iy)
+      p.add(0, r_small, 2760, {1.99 * r_small * ix + r_big - r_small, 1.99 * r_small * iy, zs - 0.004}, {}, {});
+  std::vector<std::uint32_t> pi, pj;
+  for (std::uint32_t a = 0; a < p.size(); ++a)
+    for (std::uint32_t b = a + 1; b < p.size(); ++b)
+      if (norm(p.x[a] - p.x[b]) < p.radius[a] + p.radius[b] + 1e-4) pi.push_back(a), pj.push_back(b);
+  std::vector<long> members;
+  std::vector<double> d0;
+  for (long a = 0; a < static_cast<long>(p.size()); ++a) members.push_back(a), d0.push_back(0.02);
+  const CollectiveInput in{&p, &members, &d0, &pi, &pj, zs, tau};
+  for (int parts : {2, 3}) {
+    CollectiveYield rule;
+    rule.begin(in, parts);
+    const std::vector<long>& cut = rule.part_cuts();
+    REQUIRE(cut.size() == static_cast<std::size_t>(parts) + 1);  // one cluster
+    const long rows = cut.back();
+    REQUIRE(rows > 100);
+    // The strips' layout as strip_layout makes it (r_min / 16), and each disc's strips, recounted here.
+    double y_lo = INFINITY, y_hi = -INFINITY;
+    for (std::size_t a = 0; a < p.size(); ++a)
+      y_lo = std::min(y_lo, p.x[a].y - p.radius[a]), y_hi = std::max(y_hi, p.x[a].y + p.radius[a]);
+    const double step = (y_hi - y_lo) / static_cast<double>(rows);
+    std::vector<long> per_row(static_cast<std::size_t>(rows), 0);
+    long total = 0;
+    for (std::size_t a = 0; a < p.size(); ++a) {
+      const long lo = std::max(0L, static_cast<long>(std::floor((p.x[a].y - p.radius[a] - y_lo) / step)));
+      const long hi = std::min(rows - 1, static_cast<long>(std::floor((p.x[a].y + p.radius[a] - y_lo) / step)));
+      for (long row = lo; row <= hi; ++row) ++per_row[static_cast<std::size_t>(row)], ++total;
+    }
+    long widest = 0;
+    for (long c : per_row) widest = std::max(widest, c);
+    const auto share = [&](long r0, long r1) {
+      long s = 0;
+      for (long row = r0; row < r1; ++row) s += per_row[static_cast<std::size_t>(row)];
+      return s;
+    };
+    INFO(parts << " parts, " << rows << " strips, " << total << " crossings");
+    for (int t = 0; t < parts; ++t) {
+      CHECK(cut[static_cast<std::size_t>(t)] < cut[static_cast<std::size_t>(t) + 1]);
+      CHECK(std::abs(share(cut[static_cast<std::size_t>(t)], cut[static_cast<std::size_t>(t) + 1]) * parts - total) <=
+            parts * widest);
+    }
+    // Equal rows would not do: part 0's share of the crossings.
+    CHECK(share(0, rows / parts) * parts > total * 3 / 2);
+  }
+}
