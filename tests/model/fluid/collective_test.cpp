@@ -25,6 +25,13 @@ namespace {
 // Area of the lens shared by two discs of radius r at centre distance c (m2).
 double lens(double r, double c) { return 2.0 * r * r * std::acos(c / (2.0 * r)) - 0.5 * c * std::sqrt(4.0 * r * r - c * c); }
 
+// The pairs (a < b) of p whose gap is below `gap` (m), by brute force: the candidate pairs a World would give.
+void near_pairs(const Particles& p, double gap, std::vector<std::uint32_t>& pi, std::vector<std::uint32_t>& pj) {
+  for (std::uint32_t a = 0; a < p.size(); ++a)
+    for (std::uint32_t b = a + 1; b < p.size(); ++b)
+      if (norm(p.x[a] - p.x[b]) < p.radius[a] + p.radius[b] + gap) pi.push_back(a), pj.push_back(b);
+}
+
 }  // namespace
 
 TEST_CASE("collective: a lone disc's strips sum to its area to round-off, wherever it sits on the strips") {
@@ -233,9 +240,7 @@ TEST_CASE("collective: the footprints shared by 2, 3 or 7 parts give the factors
     p.add(0, r, 2760, {0.04 * rng.uniform(), 0.03 * rng.uniform(), zs - 0.012 + 0.014 * rng.uniform()}, {}, {});
   }
   std::vector<std::uint32_t> pi, pj;
-  for (std::uint32_t a = 0; a < p.size(); ++a)
-    for (std::uint32_t b = a + 1; b < p.size(); ++b)
-      if (norm(p.x[a] - p.x[b]) < p.radius[a] + p.radius[b] + 1e-4) pi.push_back(a), pj.push_back(b);
+  near_pairs(p, 1e-4, pi, pj);
   std::vector<long> members;
   std::vector<double> d0;
   for (long a = 0; a < static_cast<long>(p.size()); ++a) members.push_back(a), d0.push_back(0.01 + 0.001 * static_cast<double>(a % 7));
@@ -271,9 +276,7 @@ TEST_CASE("collective: the parts' strips are cut at equal shares of the discs' s
     for (int iy = 0; iy < 4; ++iy)
       p.add(0, r_small, 2760, {1.99 * r_small * ix + r_big - r_small, 1.99 * r_small * iy, zs - 0.004}, {}, {});
   std::vector<std::uint32_t> pi, pj;
-  for (std::uint32_t a = 0; a < p.size(); ++a)
-    for (std::uint32_t b = a + 1; b < p.size(); ++b)
-      if (norm(p.x[a] - p.x[b]) < p.radius[a] + p.radius[b] + 1e-4) pi.push_back(a), pj.push_back(b);
+  near_pairs(p, 1e-4, pi, pj);
   std::vector<long> members;
   std::vector<double> d0;
   for (long a = 0; a < static_cast<long>(p.size()); ++a) members.push_back(a), d0.push_back(0.02);
