@@ -30,6 +30,10 @@ struct StripLayout {
   long rows = 0;
 };
 
+// The strip of height y (m) among strips of width step (m) from y_lo (m), unclamped (strip_lengths and
+// CollectiveYield::cut_rows must agree on every disc's strips).
+long strip_of(double y, double y_lo, double step) { return static_cast<long>(std::floor((y - y_lo) / step)); }
+
 StripLayout strip_layout(const double* cy, const double* r, std::size_t n, double h) {
   if (n == 0) return {};
   double y_lo = cy[0] - r[0], y_hi = cy[0] + r[0];
@@ -121,8 +125,8 @@ void strip_lengths(const double* cx, const double* cy, const double* r, std::siz
   // Each disc's strips within [row0, row1), computed once: [lo[k], hi[k]] (empty where lo > hi).
   std::vector<long> lo(n, 0), hi(n, -1);
   for (std::uint32_t k : by_x) {
-    lo[k] = std::max(row0, static_cast<long>(std::floor((cy[k] - r[k] - y_lo) / step)));
-    hi[k] = std::min(row1 - 1, static_cast<long>(std::floor((cy[k] + r[k] - y_lo) / step)));
+    lo[k] = std::max(row0, strip_of(cy[k] - r[k], y_lo, step));
+    hi[k] = std::min(row1 - 1, strip_of(cy[k] + r[k], y_lo, step));
   }
   auto for_blocks = [&](std::uint32_t k, auto&& f) {  // f(b) for each block of strips disc k reaches
     if (lo[k] <= hi[k])
@@ -326,8 +330,8 @@ void CollectiveYield::cut_rows(const Pending& c) {
   long total = 0;
   for (std::size_t k = c.disc0; k < c.disc1; ++k) {
     if (!(cr_[k] > 0.0)) continue;
-    const long lo = std::clamp(static_cast<long>(std::floor((cy_[k] - cr_[k] - c.y_lo) / c.step)), 0L, c.rows - 1);
-    const long hi = std::clamp(static_cast<long>(std::floor((cy_[k] + cr_[k] - c.y_lo) / c.step)), lo, c.rows - 1);
+    const long lo = std::clamp(strip_of(cy_[k] - cr_[k], c.y_lo, c.step), 0L, c.rows - 1);
+    const long hi = std::clamp(strip_of(cy_[k] + cr_[k], c.y_lo, c.step), lo, c.rows - 1);
     ++per_row[static_cast<std::size_t>(lo)], --per_row[static_cast<std::size_t>(hi) + 1];
     total += hi - lo + 1;
   }
