@@ -36,7 +36,9 @@ void run_points(const model::SceneDoc& base, const RollingOptions& o, const std:
       model::SceneDoc d = with_rolling_resistance(base, mu);
       if (o.seeds > 1) d.set("seed", std::to_string(seed0 + k));
       docs.push_back(std::move(d));
-      runs.push_back({mu, seed0 + k});
+      RollingRun run;
+      run.mu = mu, run.seed = seed0 + k;
+      runs.push_back(run);
     }
   const std::filesystem::path dir = o.no_cache ? std::filesystem::path{} : o.out / "runs";
   std::vector<Task> list;
