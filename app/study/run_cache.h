@@ -20,6 +20,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "model/scene_doc.h"
@@ -36,6 +37,13 @@ struct RunRecord {
   double work = 0.0;     // particles x steps
   std::size_t particles = 0;
   std::string engine;    // software version that ran it (provenance; not part of the key)
+  // The record of a run that failed with `message`.
+  static RunRecord failed_with(std::string message) {
+    RunRecord r;
+    r.failed = true;
+    r.failure = std::move(message);
+    return r;
+  }
 };
 
 // The key of one run: text hash of the QoI name and the resolved scene text.

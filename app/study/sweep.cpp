@@ -30,14 +30,6 @@ namespace {
 
 std::string lit(double v) { return fmt::format("{:.10g}", v); }
 
-// The record of a run that failed with `message` (the progress line's view of it).
-RunRecord failed_record(const std::string& message) {
-  RunRecord r;
-  r.failed = true;
-  r.failure = message;
-  return r;
-}
-
 std::string material_name(const model::SceneDoc& d, const SweepOptions& o) {
   return o.material.empty() ? d.string("material.0.name") : o.material;
 }
@@ -320,7 +312,7 @@ void run_sweep_tasks(std::vector<SweepRun>& tasks, const SweepOptions& o, const 
         t.failure = e.what();
       }
       ++counts.ran;
-      if (!o.quiet) print_task(o, values[t.point], t.seed, t.cost ? record_of(*t.cost) : failed_record(t.failure), from);
+      if (!o.quiet) print_task(o, values[t.point], t.seed, t.cost ? record_of(*t.cost) : RunRecord::failed_with(t.failure), from);
     } else if (rec.failed) {
       t.failure = rec.failure;
     } else {

@@ -51,9 +51,7 @@ RunRecord compute(const Task& t, const StudyIo& io, const RunCache& cache, From&
   try {
     r = t.run(from);
   } catch (const RuntimeFailure& e) {
-    r = RunRecord{};
-    r.failed = true;
-    r.failure = e.what();
+    r = RunRecord::failed_with(e.what());
   }
   r.engine = io.engine;
   cache.store(t.key, r, "", t.what);
